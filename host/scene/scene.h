@@ -1,0 +1,104 @@
+// The renderer's one scene representation: flat, unindexed triangle arrays plus materials,
+// textures, lights and an optional camera. Loaders fill it; the BVH builder and the device
+// upload read it. Everything is in world space and linear RGB.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "host/math/affine.h"
+#include "host/math/bounds3.h"
+
+namespace gc {
+
+enum class MaterialType : std::uint32_t { Lambert, Phong, Mirror, Dielectric, Pbr };
+enum class AlphaMode : std::uint32_t { Opaque, Mask, Blend };
+enum class WrapMode : std::uint32_t { Repeat, ClampToEdge, MirroredRepeat };
+
+struct Material {
+    std::string name = "default";
+    MaterialType type = MaterialType::Lambert;
+    glm::vec3 albedo{0.5f};      // Kd / baseColorFactor (linear)
+    glm::vec3 specular{0.0f};    // Ks (Phong lobe, or mirror reflectance)
+    float phong_exponent = 1.0f; // Ns
+    glm::vec3 emission{0.0f};    // Ke / emissiveFactor * strength: radiance
+    float ior = 1.5f;            // Ni
+    float opacity = 1.0f;        // d / baseColor alpha
+    float metallic = 0.0f;
+    float roughness = 1.0f;
+    float transmission = 0.0f;
+    AlphaMode alpha_mode = AlphaMode::Opaque;
+    float alpha_cutoff = 0.5f;
+    bool double_sided = false;
+    int albedo_texture = -1;     // index into Scene::textures, -1 = none
+    int metallic_roughness_texture = -1;
+    int normal_texture = -1;
+    int emission_texture = -1;
+
+    bool is_emissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
+};
+
+struct Texture {
+    std::string name;            // file name or "<gltf image N>", for messages
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint32_t> texels; // RGBA8, R in the low byte, row 0 = top of the image
+    bool srgb = true;            // colour textures are sRGB-encoded; data textures are not
+    WrapMode wrap_s = WrapMode::Repeat;
+    WrapMode wrap_t = WrapMode::Repeat;
+    bool nearest = false;
+};
+
+struct Camera {
+    Point3 look_from{0, 0, 1};
+    Point3 look_at{0, 0, 0};
+    Vec3 up{0, 1, 0};
+    float vfov_degrees = 40.0f; // full vertical field of view
+};
+
+struct PointLight {
+    Point3 position;
+    glm::vec3 intensity{1.0f}; // radiant intensity, W/sr per channel
+};
+
+struct Scene {
+    // Three entries per triangle, in triangle order. normals are always filled: the face
+    // normal at each corner when the file gives none (then has_vertex_normals is false).
+    std::vector<Point3> positions;
+    std::vector<Normal3> normals;
+    std::vector<glm::vec2> uvs;                 // three per triangle, or empty
+    std::vector<std::uint32_t> material_ids;    // one per triangle, index into materials
+    std::vector<std::uint8_t> has_vertex_normals; // one per triangle (0/1)
+
+    std::vector<Material> materials;            // never empty once loaded
+    std::vector<Texture> textures;
+    std::vector<PointLight> point_lights;
+    std::optional<Camera> camera;               // the file's camera, if it has one
+
+    std::string source_path;                    // the file it came from, for messages
+
+    std::size_t triangle_count() const { return material_ids.size(); }
+    Point3 vertex(std::size_t tri, int corner) const { return positions[3 * tri + corner]; }
+
+    Bounds3 bounds() const
+    {
+        Bounds3 b;
+        for (const Point3& p : positions) b = unite(b, p);
+        return b;
+    }
+
+    // Scene triangle indices whose material emits, in triangle order.
+    std::vector<std::uint32_t> emissive_triangles() const
+    {
+        std::vector<std::uint32_t> out;
+        for (std::size_t i = 0; i < triangle_count(); ++i)
+            if (materials[material_ids[i]].is_emissive()) out.push_back(static_cast<std::uint32_t>(i));
+        return out;
+    }
+};
+
+}  // namespace gc

@@ -1,0 +1,29 @@
+/*
+ * gc_accessors.h — named reads of the integer payloads that gc_types.h packs into float .w
+ * lanes, so no kernel or host code decodes bit patterns by hand.
+ */
+#ifndef GC_ACCESSORS_H
+#define GC_ACCESSORS_H
+
+#include "gc_types.h"
+
+GC_NAMESPACE_BEGIN
+
+GC_FUNC uint gc_node_first(GcBvhNode n) { return gc_as_uint(n.lo.w); }
+GC_FUNC uint gc_node_count(GcBvhNode n) { return gc_as_uint(n.hi.w); }
+GC_FUNC bool gc_node_is_leaf(GcBvhNode n) { return gc_node_count(n) != 0u; }
+GC_FUNC uint gc_triangle_prim(GcTriangle t) { return gc_as_uint(t.v0.w); }
+
+GC_FUNC float gc_ray_tmin(GcRay r) { return r.org_tmin.w; }
+GC_FUNC float gc_ray_tmax(GcRay r) { return r.dir_tmax.w; }
+GC_FUNC GcRay gc_make_ray(float3 org, float3 dir, float tmin, float tmax)
+{
+    GcRay r;
+    r.org_tmin = make_float4(org.x, org.y, org.z, tmin);
+    r.dir_tmax = make_float4(dir.x, dir.y, dir.z, tmax);
+    return r;
+}
+
+GC_NAMESPACE_END
+
+#endif /* GC_ACCESSORS_H */

@@ -1,0 +1,199 @@
+/*
+ * gc_types.h — every struct that crosses the host/device boundary, declared once.
+ *
+ * Compiled as OpenCL C, C++ (namespace gc::dev, with static_asserts at the end) and GLSL
+ * (std430). Rules (see gc_platform.h): sizes are multiples of 16, float4/uint4 fields sit at
+ * 16-byte offsets, everything else is a 4-byte scalar. kernels/layout_probe.cl re-measures
+ * every field listed in gc_layout_list.h on each device; tests compare with the host.
+ *
+ * Integer payloads stored in the .w of a float4 are bit patterns (gc_as_uint), read through
+ * the named accessors in gc_accessors.h — never by casting the float.
+ */
+#ifndef GC_TYPES_H
+#define GC_TYPES_H
+
+#include "gc_platform.h"
+
+GC_NAMESPACE_BEGIN
+
+/* Ray: origin and direction with the valid parameter interval packed into .w, so a ray is
+ * two 16-byte loads. */
+GC_STRUCT(GcRay) {
+    float4 org_tmin; /* xyz: origin;    w: t_min */
+    float4 dir_tmax; /* xyz: direction; w: t_max (need not be normalized) */
+} GC_STRUCT_END(GcRay)
+
+/* Closest-hit record. prim is the scene triangle index (not the BVH slot), GC_INVALID on a
+ * miss; (u, v) are the barycentrics of v1 and v2. */
+GC_STRUCT(GcHit) {
+    float t;
+    float u;
+    float v;
+    uint prim;
+} GC_STRUCT_END(GcHit)
+
+/* BVH2 node, 32 bytes. Inner node: children are nodes[first] and nodes[first + 1].
+ * Leaf: triangles tris[first .. first + count). count == 0 marks an inner node. */
+GC_STRUCT(GcBvhNode) {
+    float4 lo; /* xyz: bounds min; w: bits of `first` */
+    float4 hi; /* xyz: bounds max; w: bits of `count` */
+} GC_STRUCT_END(GcBvhNode)
+
+/* Triangle in BVH leaf order, as the traversal kernels read it. */
+GC_STRUCT(GcTriangle) {
+    float4 v0; /* xyz: vertex 0; w: bits of the scene triangle index */
+    float4 v1; /* xyz: vertex 1; w: 0 */
+    float4 v2; /* xyz: vertex 2; w: 0 */
+} GC_STRUCT_END(GcTriangle)
+
+/* Shading attributes, indexed by scene triangle index. Normals are always present: loaders
+ * store the face normal at all three corners when the file has none. */
+GC_STRUCT(GcTriangleAttribs) {
+    float4 n0;   /* xyz: shading normal at v0 */
+    float4 n1;
+    float4 n2;
+    float4 uv01; /* xy: uv at v0; zw: uv at v1 */
+    float uv2_u;
+    float uv2_v;
+    uint material;
+    uint flags; /* GC_TRIF_* */
+} GC_STRUCT_END(GcTriangleAttribs)
+
+#define GC_TRIF_HAS_UV 1u
+#define GC_TRIF_HAS_VERTEX_NORMALS 2u
+
+/* Material types (GcMaterial.type). Emission is independent of the type. */
+#define GC_MAT_LAMBERT 0u    /* albedo / pi */
+#define GC_MAT_PHONG 1u      /* albedo / pi + specular (n+2)/(2 pi) cos^n(alpha) */
+#define GC_MAT_MIRROR 2u     /* albedo / pi + perfect mirror weighted by specular (MTL illum 3/5) */
+#define GC_MAT_DIELECTRIC 3u /* smooth dielectric, ior in emission.w */
+#define GC_MAT_PBR 4u        /* glTF metallic-roughness (GGX) */
+
+#define GC_MATF_TWO_SIDED 1u   /* emission on both faces (glTF doubleSided) */
+#define GC_MATF_ALPHA_MASK 2u
+#define GC_MATF_ALPHA_BLEND 4u
+
+GC_STRUCT(GcMaterial) {
+    float4 albedo;   /* rgb: diffuse reflectance / base color (linear); a: opacity */
+    float4 specular; /* rgb: specular or mirror reflectance; a: Phong exponent */
+    float4 emission; /* rgb: emitted radiance; a: index of refraction */
+    float4 pbr;      /* x: metallic; y: roughness; z: alpha cutoff; w: transmission */
+    uint type;       /* GC_MAT_* */
+    uint albedo_texture;          /* GcTexture index or GC_INVALID */
+    uint metallic_roughness_texture;
+    uint normal_texture;
+    uint emission_texture;
+    uint flags; /* GC_MATF_* */
+    uint pad0;
+    uint pad1;
+} GC_STRUCT_END(GcMaterial)
+
+#define GC_TEXF_SRGB 1u          /* texels are sRGB-encoded colour */
+#define GC_TEXF_CLAMP_S 2u       /* clamp-to-edge in u, else repeat */
+#define GC_TEXF_CLAMP_T 4u
+#define GC_TEXF_MIRROR_S 8u
+#define GC_TEXF_MIRROR_T 16u
+#define GC_TEXF_NEAREST 32u
+
+/* A texture is width * height RGBA8 texels (one uint each, R in the low byte) starting at
+ * `offset` in the shared texel buffer. */
+GC_STRUCT(GcTexture) {
+    uint offset;
+    uint width;
+    uint height;
+    uint flags; /* GC_TEXF_* */
+} GC_STRUCT_END(GcTexture)
+
+/* One emissive triangle, for next-event estimation. cdf is the inclusive prefix sum of the
+ * power-proportional selection probabilities. */
+GC_STRUCT(GcEmitter) {
+    uint triangle; /* scene triangle index */
+    float area;
+    float pmf;     /* probability of choosing this emitter */
+    float cdf;
+} GC_STRUCT_END(GcEmitter)
+
+GC_STRUCT(GcPointLight) {
+    float4 position;  /* xyz; w: 0 */
+    float4 intensity; /* rgb radiant intensity (W/sr per channel); w: 0 */
+} GC_STRUCT_END(GcPointLight)
+
+/* Pinhole camera. A pixel's ray direction is forward + x * right + y * up for x, y in
+ * [-1, 1]; right and up are pre-scaled by tan(fov/2) (times the aspect ratio for right). */
+GC_STRUCT(GcCamera) {
+    float4 origin;
+    float4 forward;
+    float4 right;
+    float4 up;
+} GC_STRUCT_END(GcCamera)
+
+#define GC_INTEGRATOR_AOV 0u
+#define GC_INTEGRATOR_PATH 1u
+#define GC_INTEGRATOR_WHITTED 2u
+
+#define GC_AOV_PREVIEW 0u /* simple shaded preview: albedo * headlight cosine */
+#define GC_AOV_ALBEDO 1u
+#define GC_AOV_NORMAL 2u  /* shading normal, world space, mapped as is (may be negative) */
+#define GC_AOV_DEPTH 3u   /* distance along the ray */
+#define GC_AOV_PRIMID 4u  /* scene triangle index as a float, -1 for misses */
+
+/* The one parameter block every kernel takes. Set in one place on the host. */
+GC_STRUCT(GcRenderParams) {
+    GcCamera camera;
+    float4 env_radiance; /* rgb: constant environment radiance; w: 0 */
+    uint width;
+    uint height;
+    uint sample_index; /* which sample of each pixel this pass renders */
+    uint seed;
+    uint max_depth;    /* path segments: 1 = emitters only, 2 = direct light */
+    uint integrator;   /* GC_INTEGRATOR_* */
+    uint aov;          /* GC_AOV_* when integrator == GC_INTEGRATOR_AOV */
+    uint num_triangles;
+    uint num_emitters;
+    uint num_point_lights;
+    uint num_textures;
+    uint flags;
+    uint pixel_offset; /* first pixel of this pass's batch */
+    uint pixel_count;  /* pixels in this pass's batch */
+    uint rr_depth;     /* Russian roulette starts at this depth */
+    uint pad0;
+} GC_STRUCT_END(GcRenderParams)
+
+GC_NAMESPACE_END
+
+#if defined(GC_HOST)
+#include <cstddef>
+#include <type_traits>
+/* The host half of the layout contract. The device half is kernels/layout_probe.cl. */
+namespace gc::dev::layout_check {
+#define GC_CHECK_POD(T)                                                                         \
+    static_assert(std::is_trivially_copyable_v<T> && std::is_standard_layout_v<T>, #T " must be POD"); \
+    static_assert(sizeof(T) % 16 == 0, #T " size must be a multiple of 16")
+GC_CHECK_POD(GcRay);
+GC_CHECK_POD(GcHit);
+GC_CHECK_POD(GcBvhNode);
+GC_CHECK_POD(GcTriangle);
+GC_CHECK_POD(GcTriangleAttribs);
+GC_CHECK_POD(GcMaterial);
+GC_CHECK_POD(GcTexture);
+GC_CHECK_POD(GcEmitter);
+GC_CHECK_POD(GcPointLight);
+GC_CHECK_POD(GcCamera);
+GC_CHECK_POD(GcRenderParams);
+#undef GC_CHECK_POD
+static_assert(sizeof(GcRay) == 32 && offsetof(GcRay, dir_tmax) == 16);
+static_assert(sizeof(GcHit) == 16 && offsetof(GcHit, prim) == 12);
+static_assert(sizeof(GcBvhNode) == 32 && offsetof(GcBvhNode, hi) == 16);
+static_assert(sizeof(GcTriangle) == 48 && offsetof(GcTriangle, v2) == 32);
+static_assert(sizeof(GcTriangleAttribs) == 80 && offsetof(GcTriangleAttribs, uv01) == 48 &&
+              offsetof(GcTriangleAttribs, uv2_u) == 64 && offsetof(GcTriangleAttribs, flags) == 76);
+static_assert(sizeof(GcMaterial) == 96 && offsetof(GcMaterial, type) == 64 &&
+              offsetof(GcMaterial, emission_texture) == 80);
+static_assert(sizeof(GcTexture) == 16 && sizeof(GcEmitter) == 16);
+static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);
+static_assert(sizeof(GcRenderParams) == 144 && offsetof(GcRenderParams, env_radiance) == 64 &&
+              offsetof(GcRenderParams, width) == 80 && offsetof(GcRenderParams, pixel_offset) == 128);
+}  // namespace gc::dev::layout_check
+#endif
+
+#endif /* GC_TYPES_H */

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package geocold-cl needs to build, test and benchmark.
+# Idempotent and non-interactive: run it as root (or through sudo) as often as you like.
+set -euo pipefail
+
+packages=(
+    # Toolchain
+    build-essential cmake ninja-build pkg-config python3
+    # OpenCL: headers, ICD loader, PoCL (the CPU device), clinfo for diagnostics
+    opencl-c-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
+    # Host libraries
+    libglm-dev libopenimageio-dev openimageio-tools
+    libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+    libgtest-dev libgmock-dev
+    # Vulkan cross-check path: loader, headers, lavapipe, GLSL -> SPIR-V
+    libvulkan-dev mesa-vulkan-drivers glslc glslang-tools
+    # Benchmark yardstick only
+    libembree-dev
+)
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${packages[@]}"
