@@ -8,6 +8,8 @@
  *   - scalar math uses OpenCL names (sqrt, fabs, fmin, fmax, floor, ...); GLSL gets #defines,
  *     C++ gets using-declarations and a few overloads;
  *   - functions return by value (GLSL has no pointers) and are declared GC_FUNC;
+ *   - conversions are gc_float(x) / gc_int(x) / gc_uint(x): C casts are not GLSL, and GLSL
+ *     constructors are not C; no % on negative integers (undefined in GLSL);
  *   - structs are declared with GC_STRUCT(Name) { ... } GC_STRUCT_END(Name), are a multiple
  *     of 16 bytes, and hold float4/uint4 or 4-byte scalars only (no float3: OpenCL gives it
  *     16 bytes, std430 packs a following scalar into its tail).
@@ -33,6 +35,9 @@
 #define gc_as_uint(f) as_uint(f)
 #define gc_as_float(u) as_float(u)
 #define GC_XYZ(v) ((v).xyz)
+#define gc_float(x) ((float)(x))
+#define gc_int(x) ((int)(x))
+#define gc_uint(x) ((uint)(x))
 
 #elif defined(__cplusplus)
 /* ---------------------------------------------------------------- C++ host */
@@ -87,6 +92,9 @@ inline float3 fabs(float3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs
 #define GC_STRUCT(name) struct alignas(16) name
 #define GC_STRUCT_END(name) ;
 #define GC_XYZ(v) (::gc::dev::float3((v).x, (v).y, (v).z))
+#define gc_float(x) static_cast<float>(x)
+#define gc_int(x) static_cast<int>(x)
+#define gc_uint(x) static_cast<::gc::dev::uint>(x)
 #define GC_NAMESPACE_BEGIN namespace gc::dev {
 #define GC_NAMESPACE_END }
 
@@ -114,6 +122,9 @@ inline float3 fabs(float3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs
 #define gc_as_uint floatBitsToUint
 #define gc_as_float uintBitsToFloat
 #define GC_XYZ(v) ((v).xyz)
+#define gc_float(x) float(x)
+#define gc_int(x) int(x)
+#define gc_uint(x) uint(x)
 #endif
 
 #ifndef GC_NAMESPACE_BEGIN

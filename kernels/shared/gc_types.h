@@ -52,6 +52,7 @@ GC_STRUCT(GcTriangleAttribs) {
     float4 n0;   /* xyz: shading normal at v0 */
     float4 n1;
     float4 n2;
+    float4 ng;   /* xyz: unit geometric normal (right-handed winding v0 v1 v2); zero if degenerate */
     float4 uv01; /* xy: uv at v0; zw: uv at v1 */
     float uv2_u;
     float uv2_v;
@@ -104,9 +105,13 @@ GC_STRUCT(GcTexture) {
     uint flags; /* GC_TEXF_* */
 } GC_STRUCT_END(GcTexture)
 
-/* One emissive triangle, for next-event estimation. cdf is the inclusive prefix sum of the
- * power-proportional selection probabilities. */
+/* One emissive triangle, for next-event estimation, with its vertices so that sampling a
+ * point needs no other lookup. cdf is the inclusive prefix sum of the power-proportional
+ * selection probabilities (the last emitter's cdf is exactly 1). */
 GC_STRUCT(GcEmitter) {
+    float4 v0;     /* xyz: vertex 0 */
+    float4 v1;
+    float4 v2;
     uint triangle; /* scene triangle index */
     float area;
     float pmf;     /* probability of choosing this emitter */
@@ -185,11 +190,13 @@ static_assert(sizeof(GcRay) == 32 && offsetof(GcRay, dir_tmax) == 16);
 static_assert(sizeof(GcHit) == 16 && offsetof(GcHit, prim) == 12);
 static_assert(sizeof(GcBvhNode) == 32 && offsetof(GcBvhNode, hi) == 16);
 static_assert(sizeof(GcTriangle) == 48 && offsetof(GcTriangle, v2) == 32);
-static_assert(sizeof(GcTriangleAttribs) == 80 && offsetof(GcTriangleAttribs, uv01) == 48 &&
-              offsetof(GcTriangleAttribs, uv2_u) == 64 && offsetof(GcTriangleAttribs, flags) == 76);
+static_assert(sizeof(GcTriangleAttribs) == 96 && offsetof(GcTriangleAttribs, ng) == 48 &&
+              offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&
+              offsetof(GcTriangleAttribs, flags) == 92);
 static_assert(sizeof(GcMaterial) == 96 && offsetof(GcMaterial, type) == 64 &&
               offsetof(GcMaterial, emission_texture) == 80);
-static_assert(sizeof(GcTexture) == 16 && sizeof(GcEmitter) == 16);
+static_assert(sizeof(GcTexture) == 16);
+static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);
 static_assert(sizeof(GcRenderParams) == 144 && offsetof(GcRenderParams, env_radiance) == 64 &&
               offsetof(GcRenderParams, width) == 80 && offsetof(GcRenderParams, pixel_offset) == 128);

@@ -1,0 +1,216 @@
+#include "host/app/options.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "host/util/error.h"
+
+namespace gc {
+namespace {
+
+// Limits that keep a typo from allocating terabytes or rendering for a year.
+constexpr int kMaxResolution = 16384;
+constexpr unsigned long kMaxSpp = 1u << 24;
+constexpr unsigned long kMaxDepth = 1024;
+
+[[noreturn]] void bad_value(const std::string& option, const std::string& value, const std::string& expected)
+{
+    throw UsageError(option + " expects " + expected + ", got '" + value + "'");
+}
+
+float parse_float(const std::string& option, const std::string& text)
+{
+    float value = 0.0f;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || !std::isfinite(value)) bad_value(option, text, "a finite number");
+    return value;
+}
+
+unsigned long parse_count(const std::string& option, const std::string& text, unsigned long lo, unsigned long hi)
+{
+    unsigned long value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || value < lo || value > hi)
+        bad_value(option, text, "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return value;
+}
+
+glm::vec3 parse_triple(const std::string& option, const std::string& text)
+{
+    glm::vec3 v;
+    std::size_t start = 0;
+    for (int i = 0; i < 3; ++i) {
+        const std::size_t comma = text.find(',', start);
+        if ((i < 2) != (comma != std::string::npos)) bad_value(option, text, "three comma-separated numbers x,y,z");
+        v[i] = parse_float(option, text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        start = comma + 1;
+    }
+    return v;
+}
+
+void parse_resolution(const std::string& option, const std::string& text, RenderSettings& settings)
+{
+    const std::size_t x = text.find('x');
+    if (x == std::string::npos) bad_value(option, text, "WIDTHxHEIGHT, e.g. 512x512");
+    settings.width = static_cast<int>(parse_count(option, text.substr(0, x), 1, kMaxResolution));
+    settings.height = static_cast<int>(parse_count(option, text.substr(x + 1), 1, kMaxResolution));
+}
+
+IntegratorKind parse_integrator(const std::string& text)
+{
+    if (text == "path") return IntegratorKind::Path;
+    if (text == "whitted") return IntegratorKind::Whitted;
+    if (text == "aov") return IntegratorKind::Aov;
+    bad_value("--integrator", text, "one of path, whitted, aov");
+}
+
+AovKind parse_aov(const std::string& text)
+{
+    if (text == "preview") return AovKind::Preview;
+    if (text == "albedo") return AovKind::Albedo;
+    if (text == "normal") return AovKind::Normal;
+    if (text == "depth") return AovKind::Depth;
+    if (text == "primid") return AovKind::PrimitiveId;
+    bad_value("--aov", text, "one of preview, albedo, normal, depth, primid");
+}
+
+}  // namespace
+
+Options parse_options(const std::vector<std::string>& args)
+{
+    Options o;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        std::string arg = args[i];
+        std::string inline_value;
+        bool has_inline_value = false;
+        if (arg.rfind("--", 0) == 0) {
+            const std::size_t eq = arg.find('=');
+            if (eq != std::string::npos) {
+                inline_value = arg.substr(eq + 1);
+                arg = arg.substr(0, eq);
+                has_inline_value = true;
+            }
+        }
+        auto value = [&]() -> std::string {
+            if (has_inline_value) return inline_value;
+            if (i + 1 >= args.size()) throw UsageError(arg + " needs a value");
+            return args[++i];
+        };
+
+        if (arg == "-h" || arg == "--help") o.help = true;
+        else if (arg == "--version") o.version = true;
+        else if (arg == "--list-devices") o.list_devices = true;
+        else if (arg == "-q" || arg == "--quiet") o.quiet = true;
+        else if (arg == "-v" || arg == "--verbose") o.verbose = true;
+        else if (arg == "-o" || arg == "--output") o.output_path = value();
+        else if (arg == "-d" || arg == "--device") o.device = value();
+        else if (arg == "--integrator") o.render.integrator = parse_integrator(value());
+        else if (arg == "--aov") {
+            o.render.aov = parse_aov(value());
+            o.render.integrator = IntegratorKind::Aov;
+        }
+        else if (arg == "--spp") {
+            o.render.spp = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxSpp));
+            o.spp_given = true;
+        }
+        else if (arg == "--seed") o.render.seed = static_cast<std::uint32_t>(parse_count(arg, value(), 0, 0xffffffffu));
+        else if (arg == "--max-depth") o.render.max_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
+        else if (arg == "--rr-depth") o.render.rr_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
+        else if (arg == "--time-limit") {
+            const std::string v = value();
+            const float seconds = parse_float(arg, v);
+            if (seconds <= 0.0f) bad_value(arg, v, "a positive number of seconds");
+            o.render.time_limit_seconds = seconds;
+        }
+        else if (arg == "--res") parse_resolution(arg, value(), o.render);
+        else if (arg == "--width") o.render.width = static_cast<int>(parse_count(arg, value(), 1, kMaxResolution));
+        else if (arg == "--height") o.render.height = static_cast<int>(parse_count(arg, value(), 1, kMaxResolution));
+        else if (arg == "--env") {
+            const std::string v = value();
+            const glm::vec3 env = parse_triple(arg, v);
+            if (env.x < 0 || env.y < 0 || env.z < 0) bad_value(arg, v, "non-negative radiance r,g,b");
+            o.render.env_radiance = env;
+        }
+        else if (arg == "--wavefront-size")
+            o.render.wavefront_size = static_cast<std::uint32_t>(parse_count(arg, value(), 1024, 1u << 26));
+        else if (arg == "--look-from") o.look_from = Point3(parse_triple(arg, value()));
+        else if (arg == "--look-at") o.look_at = Point3(parse_triple(arg, value()));
+        else if (arg == "--up") o.up = Vec3(parse_triple(arg, value()));
+        else if (arg == "--fov") {
+            const std::string v = value();
+            const float fov = parse_float(arg, v);
+            if (fov <= 0.0f || fov >= 180.0f) bad_value(arg, v, "a vertical field of view in (0, 180) degrees");
+            o.fov_degrees = fov;
+        }
+        else if (arg == "--gltf-scene") o.gltf_scene = static_cast<int>(parse_count(arg, value(), 0, 1u << 20));
+        else if (!arg.empty() && arg[0] == '-' && arg != "-") throw UsageError("unknown option '" + arg + "'");
+        else if (o.scene_path.empty()) o.scene_path = arg;
+        else throw UsageError("more than one scene given ('" + o.scene_path + "' and '" + arg + "')");
+    }
+    if (o.up && length(*o.up) == 0.0f) throw UsageError("--up must not be the zero vector");
+    if (o.look_from && o.look_at && *o.look_from == *o.look_at)
+        throw UsageError("--look-from and --look-at must differ");
+    if (!o.help && !o.version && !o.list_devices && o.scene_path.empty())
+        throw UsageError("no scene given");
+    return o;
+}
+
+std::string version_text() { return "geocold-cl 0.1.0"; }
+
+std::string usage_text()
+{
+    std::ostringstream s;
+    s << R"(Usage: geocold-cl [options] SCENE
+       geocold-cl --list-devices
+
+Renders a Wavefront .obj (with .mtl) or glTF 2.0 (.gltf/.glb) scene with OpenCL, on a GPU
+or on the CPU through PoCL; every device renders the same image.
+
+Output:
+  -o, --output FILE        image to write; .exr (linear float + metadata), .png (sRGB),
+                           .pfm, .ppm. Default: <scene name>.png in the current directory
+Device:
+  -d, --device SPEC        any | gpu | cpu | <index> | <name substring>   (default: any,
+                           which prefers a GPU)
+      --list-devices       list the OpenCL devices and exit
+Rendering:
+      --integrator NAME    path (default; unbiased path tracer with next-event estimation),
+                           whitted (classic ray tracing), aov (first-hit outputs)
+      --aov NAME           preview | albedo | normal | depth | primid   (implies
+                           --integrator aov)
+      --spp N              samples per pixel (default 64)
+      --time-limit SEC     stop after the pass that crosses SEC seconds (whichever of
+                           --spp and --time-limit ends first)
+      --res WxH            image size (default 512x512); also --width N, --height N
+      --max-depth N        path segments: 1 = emitters only, 2 = direct light (default 8)
+      --rr-depth N         Russian roulette from this depth on (default 5)
+      --seed N             random seed (default 0); same seed, same image
+      --env R,G,B          constant environment radiance (default 0,0,0)
+      --wavefront-size N   paths in flight per pass (default: chosen for the device)
+Camera (the file's camera if it has one, else framed on the scene bounds):
+      --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
+Scene:
+      --gltf-scene N       which scene of a glTF file (default: the file's default scene)
+Other:
+  -q, --quiet              no progress bar (it is also off when stderr is not a terminal)
+  -v, --verbose            more detail (kernel build and cache, timings)
+  -h, --help               this text;   --version   the version
+
+Environment:
+  GEOCOLD_KERNEL_DIR       where the OpenCL kernels are (default: built-in path)
+  GEOCOLD_CACHE_DIR        kernel binary cache (default: $XDG_CACHE_HOME/geocold-cl)
+  GEOCOLD_NO_CACHE=1       do not read or write the kernel binary cache
+
+Exit status:
+  0 success   2 bad command line   3 unreadable or malformed input file
+  4 no usable device or a device failure   5 output could not be written
+  6 a cross-check found images that disagree   130 interrupted (partial image written)
+  1 internal error (a bug: please report it)
+)";
+    return s.str();
+}
+
+}  // namespace gc

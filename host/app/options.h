@@ -1,0 +1,40 @@
+// The geocold-cl command line: parsing, validation and the --help text. Parsing never
+// touches files or devices; it only turns argv into Options or throws UsageError.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host/math/affine.h"
+#include "host/render/render_settings.h"
+
+namespace gc {
+
+struct Options {
+    std::string scene_path;
+    std::string output_path;     // empty = "<scene stem>.png" in the current directory
+    std::string device = "any";
+    bool list_devices = false;
+    bool help = false;
+    bool version = false;
+    bool quiet = false;
+    bool verbose = false;
+    int gltf_scene = -1;         // -1 = the file's default scene
+    bool spp_given = false;
+
+    RenderSettings render;
+
+    std::optional<Point3> look_from;
+    std::optional<Point3> look_at;
+    std::optional<Vec3> up;
+    std::optional<float> fov_degrees;
+};
+
+// Throws UsageError with a message that names the offending option and value.
+Options parse_options(const std::vector<std::string>& args);
+
+std::string usage_text();
+std::string version_text();
+
+}  // namespace gc

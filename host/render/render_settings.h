@@ -1,0 +1,50 @@
+// What to render: everything the command line can say about a render, independent of the
+// scene and the device.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace gc {
+
+enum class IntegratorKind { Aov, Path, Whitted };
+enum class AovKind { Preview, Albedo, Normal, Depth, PrimitiveId };
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    std::uint32_t spp = 64;
+    std::uint32_t seed = 0;
+    std::uint32_t max_depth = 8;       // path segments (Mitsuba's convention): 1 = emitters only
+    std::uint32_t rr_depth = 5;        // Russian roulette from this depth on
+    double time_limit_seconds = 0.0;   // 0 = none; otherwise stop after the pass that crosses it
+    IntegratorKind integrator = IntegratorKind::Path;
+    AovKind aov = AovKind::Preview;
+    glm::vec3 env_radiance{0.0f};      // constant environment
+    std::uint32_t wavefront_size = 0;  // paths in flight per pass; 0 = chosen for the device
+};
+
+inline const char* integrator_name(IntegratorKind k)
+{
+    switch (k) {
+    case IntegratorKind::Aov: return "aov";
+    case IntegratorKind::Path: return "path";
+    case IntegratorKind::Whitted: return "whitted";
+    }
+    return "?";
+}
+
+inline const char* aov_name(AovKind k)
+{
+    switch (k) {
+    case AovKind::Preview: return "preview";
+    case AovKind::Albedo: return "albedo";
+    case AovKind::Normal: return "normal";
+    case AovKind::Depth: return "depth";
+    case AovKind::PrimitiveId: return "primid";
+    }
+    return "?";
+}
+
+}  // namespace gc

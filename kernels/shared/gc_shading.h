@@ -1,0 +1,43 @@
+/*
+ * gc_shading.h — the surface at a ray hit: position, normals, texture coordinates and
+ * material, reconstructed from the hit record and the triangle's attributes.
+ */
+#ifndef GC_SHADING_H
+#define GC_SHADING_H
+
+#include "gc_accessors.h"
+
+GC_NAMESPACE_BEGIN
+
+/* Not a host/device layout: a kernel-local value, so float3 is fine here. */
+GC_STRUCT(GcSurface) {
+    float3 p;  /* hit point */
+    float3 ng; /* unit geometric normal, as wound (not flipped toward the ray) */
+    float3 ns; /* unit shading normal, on the same side as ng */
+    float2 uv;
+    uint material;
+    uint prim;
+} GC_STRUCT_END(GcSurface)
+
+GC_FUNC GcSurface gc_surface_at(GcTriangleAttribs a, GcRay ray, GcHit hit)
+{
+    GcSurface s;
+    const float b0 = 1.0f - hit.u - hit.v;
+    s.p = GC_XYZ(ray.org_tmin) + hit.t * GC_XYZ(ray.dir_tmax);
+    s.ng = GC_XYZ(a.ng);
+    const float3 n = b0 * GC_XYZ(a.n0) + hit.u * GC_XYZ(a.n1) + hit.v * GC_XYZ(a.n2);
+    const float len = length(n);
+    s.ns = len > 0.0f ? n * (1.0f / len) : s.ng;
+    /* Interpolated normals may point to the other side of the geometric one on badly
+     * authored meshes; keep them on ng's side so front/back decisions agree. */
+    if (dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
+    s.uv = make_float2(b0 * a.uv01.x + hit.u * a.uv01.z + hit.v * a.uv2_u,
+                       b0 * a.uv01.y + hit.u * a.uv01.w + hit.v * a.uv2_v);
+    s.material = a.material;
+    s.prim = hit.prim;
+    return s;
+}
+
+GC_NAMESPACE_END
+
+#endif /* GC_SHADING_H */

@@ -1,0 +1,97 @@
+/*
+ * gc_texture.h — bilinear texture lookups from the shared RGBA8 texel buffer.
+ *
+ * Textures are plain buffers, not OpenCL image objects: PoCL and lavapipe differ in image
+ * support, and filtering done here in IEEE float arithmetic is identical on every device.
+ * The texel buffer is reached through GC_TEXELS_PARAM / GC_TEXEL(i); GLSL overrides them
+ * to read an SSBO, like gc_traverse.h does for the BVH.
+ */
+#ifndef GC_TEXTURE_H
+#define GC_TEXTURE_H
+
+#include "gc_srgb_table.h"
+#include "gc_types.h"
+
+#ifndef GC_TEXELS_PARAM
+#define GC_TEXELS_PARAM GC_GLOBAL const uint* texels
+#define GC_TEXELS_ARG texels
+#define GC_TEXEL(i) texels[i]
+#endif
+
+GC_NAMESPACE_BEGIN
+
+GC_FUNC float4 gc_unpack_texel(uint packed, bool srgb)
+{
+    const uint r = packed & 255u;
+    const uint g = (packed >> 8u) & 255u;
+    const uint b = (packed >> 16u) & 255u;
+    const float a = gc_float(packed >> 24u) * (1.0f / 255.0f);
+    if (srgb)
+        return make_float4(gc_srgb_to_linear_table[r], gc_srgb_to_linear_table[g],
+                           gc_srgb_to_linear_table[b], a);
+    return make_float4(gc_float(r) * (1.0f / 255.0f), gc_float(g) * (1.0f / 255.0f),
+                       gc_float(b) * (1.0f / 255.0f), a);
+}
+
+/* Applies a wrap mode to a texture coordinate, in float so that huge coordinates cannot
+ * overflow an integer: the result is in [0, 1]. */
+GC_FUNC float gc_wrap_unit(float t, bool clamp_edge, bool mirror)
+{
+    if (clamp_edge) return clamp(t, 0.0f, 1.0f);
+    if (mirror) {
+        const float m = t - 2.0f * floor(0.5f * t); /* [0, 2) */
+        return m < 1.0f ? m : 2.0f - m;
+    }
+    return t - floor(t);
+}
+
+/* Texel index for x in [-1, size]: the neighbour just outside the edge wraps around for
+ * repeat and is clamped for clamp and mirror (mirror repeats the edge texel). */
+GC_FUNC uint gc_wrap_index(int x, int size, bool repeat)
+{
+    if (repeat) return gc_uint((x + size) - ((x + size) / size) * size);
+    return gc_uint(x < 0 ? 0 : (x >= size ? size - 1 : x));
+}
+
+GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float v)
+{
+    /* Non-finite coordinates (a broken mesh) read a texel instead of indexing out of bounds. */
+    if (!(fabs(u) < 1.0e7f)) u = 0.0f;
+    if (!(fabs(v) < 1.0e7f)) v = 0.0f;
+    const bool clamp_s = (tex.flags & GC_TEXF_CLAMP_S) != 0u;
+    const bool clamp_t = (tex.flags & GC_TEXF_CLAMP_T) != 0u;
+    const bool mirror_s = (tex.flags & GC_TEXF_MIRROR_S) != 0u;
+    const bool mirror_t = (tex.flags & GC_TEXF_MIRROR_T) != 0u;
+    const bool srgb = (tex.flags & GC_TEXF_SRGB) != 0u;
+    const int w = gc_int(tex.width);
+    const int h = gc_int(tex.height);
+    const float x = gc_wrap_unit(u, clamp_s, mirror_s) * gc_float(w) - 0.5f;
+    const float y = gc_wrap_unit(v, clamp_t, mirror_t) * gc_float(h) - 0.5f;
+    const bool repeat_s = !clamp_s && !mirror_s;
+    const bool repeat_t = !clamp_t && !mirror_t;
+
+    if ((tex.flags & GC_TEXF_NEAREST) != 0u) {
+        const uint xi = gc_wrap_index(gc_int(floor(x + 0.5f)), w, repeat_s);
+        const uint yi = gc_wrap_index(gc_int(floor(y + 0.5f)), h, repeat_t);
+        return gc_unpack_texel(GC_TEXEL(tex.offset + yi * tex.width + xi), srgb);
+    }
+    const float x0 = floor(x);
+    const float y0 = floor(y);
+    const float fx = x - x0;
+    const float fy = y - y0;
+    const uint xa = gc_wrap_index(gc_int(x0), w, repeat_s);
+    const uint xb = gc_wrap_index(gc_int(x0) + 1, w, repeat_s);
+    const uint ya = gc_wrap_index(gc_int(y0), h, repeat_t);
+    const uint yb = gc_wrap_index(gc_int(y0) + 1, h, repeat_t);
+    const float4 t00 = gc_unpack_texel(GC_TEXEL(tex.offset + ya * tex.width + xa), srgb);
+    const float4 t10 = gc_unpack_texel(GC_TEXEL(tex.offset + ya * tex.width + xb), srgb);
+    const float4 t01 = gc_unpack_texel(GC_TEXEL(tex.offset + yb * tex.width + xa), srgb);
+    const float4 t11 = gc_unpack_texel(GC_TEXEL(tex.offset + yb * tex.width + xb), srgb);
+    const float4 top = t00 * (1.0f - fx) + t10 * fx;
+    const float4 bottom = t01 * (1.0f - fx) + t11 * fx;
+    return top * (1.0f - fy) + bottom * fy;
+}
+
+GC_NAMESPACE_END
+
+#endif /* GC_TEXTURE_H */
