@@ -161,8 +161,40 @@ GC_STRUCT(GcRenderParams) {
     uint pixel_offset; /* first pixel of this pass's batch */
     uint pixel_count;  /* pixels in this pass's batch */
     uint rr_depth;     /* Russian roulette starts at this depth */
-    uint pad0;
+    float emitter_power; /* sum over emitters of area * luminance(emission): light pdf norm */
 } GC_STRUCT_END(GcRenderParams)
+
+/* ---- Wavefront path state (path integrator). One slot per path in flight; a slot owns
+ * its pixel for the whole pass, so stages never race on it. */
+
+#define GC_PATH_SPECULAR 1u /* the last bounce was a delta lobe: no MIS on the emitter it hits */
+
+GC_STRUCT(GcPathState) {
+    float4 throughput; /* rgb: path throughput; w: solid-angle pdf of the last BSDF sample */
+    float4 radiance;   /* rgb: radiance gathered so far; w: 0 */
+    uint pixel;
+    uint depth;        /* path segments traced so far */
+    uint flags;        /* GC_PATH_* */
+    uint pad0;
+} GC_STRUCT_END(GcPathState)
+
+/* A next-event-estimation ray: if the segment is unoccluded, contribution is added to the
+ * radiance of path slot `slot`. */
+GC_STRUCT(GcShadowRay) {
+    GcRay ray;
+    float4 contribution; /* rgb; w: 0 */
+    uint slot;
+    uint pad0;
+    uint pad1;
+    uint pad2;
+} GC_STRUCT_END(GcShadowRay)
+
+/* Queue counters, one uint each in a small buffer: two ping-pong ray queues and the
+ * shadow queue. Pushed with atomic_inc; read only by the kernels. */
+#define GC_COUNTER_RAYS_A 0u
+#define GC_COUNTER_RAYS_B 1u
+#define GC_COUNTER_SHADOW 2u
+#define GC_COUNTER_COUNT 4u
 
 GC_NAMESPACE_END
 
@@ -185,6 +217,8 @@ GC_CHECK_POD(GcEmitter);
 GC_CHECK_POD(GcPointLight);
 GC_CHECK_POD(GcCamera);
 GC_CHECK_POD(GcRenderParams);
+GC_CHECK_POD(GcPathState);
+GC_CHECK_POD(GcShadowRay);
 #undef GC_CHECK_POD
 static_assert(sizeof(GcRay) == 32 && offsetof(GcRay, dir_tmax) == 16);
 static_assert(sizeof(GcHit) == 16 && offsetof(GcHit, prim) == 12);
@@ -199,7 +233,11 @@ static_assert(sizeof(GcTexture) == 16);
 static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);
 static_assert(sizeof(GcRenderParams) == 144 && offsetof(GcRenderParams, env_radiance) == 64 &&
-              offsetof(GcRenderParams, width) == 80 && offsetof(GcRenderParams, pixel_offset) == 128);
+              offsetof(GcRenderParams, width) == 80 && offsetof(GcRenderParams, pixel_offset) == 128 &&
+              offsetof(GcRenderParams, emitter_power) == 140);
+static_assert(sizeof(GcPathState) == 48 && offsetof(GcPathState, pixel) == 32);
+static_assert(sizeof(GcShadowRay) == 64 && offsetof(GcShadowRay, contribution) == 32 &&
+              offsetof(GcShadowRay, slot) == 48);
 }  // namespace gc::dev::layout_check
 #endif
 

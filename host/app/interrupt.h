@@ -1,0 +1,10 @@
+// Ctrl-C handling: the first SIGINT asks the render loop to stop after the current sample
+// and write what it has; a second one ends the process at once.
+#pragma once
+
+namespace gc {
+
+void install_interrupt_handler();
+bool interrupt_requested();
+
+}  // namespace gc

@@ -1,0 +1,128 @@
+#include "host/app/render_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "host/app/interrupt.h"
+#include "host/bvh/bvh.h"
+#include "host/cl/context.h"
+#include "host/cl/device.h"
+#include "host/image/image_io.h"
+#include "host/render/renderer.h"
+#include "host/scene/camera_framing.h"
+#include "host/scene/load.h"
+#include "host/util/log.h"
+#include "host/util/progress.h"
+
+namespace gc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string fixed(double value, int decimals)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    return buffer;
+}
+
+std::filesystem::path default_output(const std::string& scene_path)
+{
+    return std::filesystem::path(scene_path).stem().string() + ".png";
+}
+
+}  // namespace
+
+ExitCode run_list_devices()
+{
+    std::string why;
+    const std::vector<cl::DeviceInfo> devices = cl::list_devices(&why);
+    if (devices.empty()) throw DeviceError("no OpenCL device found: " + why);
+    std::fputs(cl::format_device_list(devices).c_str(), stdout);
+    return ExitCode::Ok;
+}
+
+ExitCode run_render(const Options& options)
+{
+    const std::filesystem::path output = options.output_path.empty() ? default_output(options.scene_path)
+                                                                      : std::filesystem::path(options.output_path);
+    // Fail on an unwritable output before spending minutes rendering.
+    check_output_path(output);
+
+    RenderSettings settings = options.render;
+    // Depth, normals and primitive ids are per-pixel facts: more samples add nothing.
+    if (settings.integrator == IntegratorKind::Aov && !options.spp_given) settings.spp = 1;
+
+    auto t0 = Clock::now();
+    LoadOptions load_options;
+    load_options.gltf_scene = options.gltf_scene;
+    const Scene scene = load_scene(options.scene_path, load_options);
+    log_verbose("loaded " + options.scene_path + ": " + std::to_string(scene.triangle_count()) + " triangles, " +
+                std::to_string(scene.materials.size()) + " materials in " + fixed(seconds_since(t0), 3) + " s");
+
+    CameraOverrides overrides;
+    overrides.look_from = options.look_from;
+    overrides.look_at = options.look_at;
+    overrides.up = options.up;
+    overrides.fov = options.fov_degrees;
+    const Camera camera = resolve_camera(scene, overrides);
+
+    t0 = Clock::now();
+    const FlatBvh bvh = build_bvh(scene);
+    const BvhStats stats = bvh_stats(bvh);
+    log_verbose("BVH: " + std::to_string(stats.nodes) + " nodes, SAH cost " + fixed(stats.sah_cost, 2) + ", built in " +
+                fixed(seconds_since(t0), 3) + " s");
+
+    const cl::DeviceInfo device = cl::select_device(options.device);
+    const cl::Context context(device);
+    t0 = Clock::now();
+    Renderer renderer(context, scene, bvh, camera, settings);
+    log_verbose("device " + device.device_name + " (" + device.platform_name + "); kernels " +
+                (renderer.program().from_cache() ? "loaded from cache" : "compiled") + " in " +
+                fixed(renderer.program().build_seconds(), 3) + " s; scene uses " +
+                std::to_string(renderer.device_scene().bytes() / 1024) + " KiB on the device");
+
+    install_interrupt_handler();
+    ProgressBar::Options progress_options;
+    progress_options.quiet = options.quiet;
+    progress_options.unit = "spp";
+    ProgressBar progress("Rendering", settings.spp, progress_options);
+    const auto render_start = Clock::now();
+    bool interrupted = false;
+    while (renderer.samples_done() < settings.spp) {
+        renderer.render_sample();
+        progress.update(renderer.samples_done());
+        if (interrupt_requested()) {
+            interrupted = true;
+            break;
+        }
+        if (settings.time_limit_seconds > 0 && seconds_since(render_start) >= settings.time_limit_seconds) break;
+    }
+    progress.finish();
+    const double render_seconds = seconds_since(render_start);
+
+    ImageMetadata meta;
+    meta.device = device.device_name + " (" + device.platform_name + ")";
+    meta.integrator = integrator_name(settings.integrator);
+    if (settings.integrator == IntegratorKind::Aov) meta.integrator += std::string(":") + aov_name(settings.aov);
+    meta.scene = options.scene_path;
+    meta.spp = renderer.samples_done();
+    meta.seconds = render_seconds;
+    meta.seed = settings.seed;
+    write_image(output, renderer.film(), meta);
+
+    const double samples_per_second =
+        static_cast<double>(settings.width) * settings.height * renderer.samples_done() / std::max(render_seconds, 1e-9);
+    log_info("wrote " + output.string() + " (" + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+             ", " + std::to_string(renderer.samples_done()) + " spp, " + fixed(render_seconds, 2) + " s, " +
+             fixed(samples_per_second / 1e6, 2) + " Msamples/s on " + device.device_name + ")");
+    return interrupted ? ExitCode::Interrupted : ExitCode::Ok;
+}
+
+}  // namespace gc

@@ -1,0 +1,47 @@
+#include "host/render/device_scene.h"
+
+#include <vector>
+
+#include "host/render/scene_convert.h"
+
+namespace gc {
+namespace {
+
+template <class T>
+cl::Buffer<T> upload_buffer(const cl::Context& context, const std::vector<T>& data, const char* name)
+{
+    cl::Buffer<T> buffer = cl::Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, name);
+    buffer.write(data);
+    return buffer;
+}
+
+}  // namespace
+
+std::uint64_t DeviceScene::bytes() const
+{
+    return nodes.bytes() + triangles.bytes() + attribs.bytes() + materials.bytes() + textures.bytes() +
+           texels.bytes() + emitters.bytes() + point_lights.bytes();
+}
+
+DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh)
+{
+    DeviceScene d;
+    const DeviceTextures textures = make_textures(scene);
+    const std::vector<dev::GcEmitter> emitters = make_emitters(scene);
+    const std::vector<dev::GcPointLight> lights = make_point_lights(scene);
+    d.nodes = upload_buffer(context, bvh.nodes, "bvh nodes");
+    d.triangles = upload_buffer(context, bvh.triangles, "bvh triangles");
+    d.attribs = upload_buffer(context, make_triangle_attribs(scene), "triangle attributes");
+    d.materials = upload_buffer(context, make_materials(scene), "materials");
+    d.textures = upload_buffer(context, textures.textures, "textures");
+    d.texels = upload_buffer(context, textures.texels, "texels");
+    d.emitters = upload_buffer(context, emitters, "emitters");
+    d.point_lights = upload_buffer(context, lights, "point lights");
+    d.triangle_count = static_cast<std::uint32_t>(scene.triangle_count());
+    d.emitter_count = static_cast<std::uint32_t>(emitters.size());
+    d.point_light_count = static_cast<std::uint32_t>(lights.size());
+    d.texture_count = static_cast<std::uint32_t>(textures.textures.size());
+    return d;
+}
+
+}  // namespace gc

@@ -1,0 +1,187 @@
+#include "host/render/renderer.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "host/render/scene_convert.h"
+#include "host/util/error.h"
+
+namespace gc {
+namespace {
+
+std::uint32_t aov_code(AovKind kind)
+{
+    switch (kind) {
+    case AovKind::Preview: return GC_AOV_PREVIEW;
+    case AovKind::Albedo: return GC_AOV_ALBEDO;
+    case AovKind::Normal: return GC_AOV_NORMAL;
+    case AovKind::Depth: return GC_AOV_DEPTH;
+    case AovKind::PrimitiveId: return GC_AOV_PRIMID;
+    }
+    return GC_AOV_PREVIEW;
+}
+
+std::uint32_t integrator_code(IntegratorKind kind)
+{
+    switch (kind) {
+    case IntegratorKind::Aov: return GC_INTEGRATOR_AOV;
+    case IntegratorKind::Path: return GC_INTEGRATOR_PATH;
+    case IntegratorKind::Whitted: return GC_INTEGRATOR_WHITTED;
+    }
+    return GC_INTEGRATOR_AOV;
+}
+
+float total_emitter_power(const Scene& scene, const std::vector<dev::GcEmitter>& emitters)
+{
+    // Must match gc_light_pdf_w: pdf_area = luminance(Le) / total, with total = sum area * luminance.
+    double total = 0.0;
+    for (const dev::GcEmitter& e : emitters) {
+        const glm::vec3 le = scene.materials[scene.material_ids[e.triangle]].emission;
+        total += static_cast<double>(e.area) * (0.2126 * le.r + 0.7152 * le.g + 0.0722 * le.b);
+    }
+    return static_cast<float>(total);
+}
+
+void zero_counters(const cl::Context& context, const cl::Buffer<std::uint32_t>& counters, std::uint32_t first,
+                   std::uint32_t count)
+{
+    const std::uint32_t zero = 0;
+    GC_CL_WHAT("resetting queue counters", clEnqueueFillBuffer, context.queue(), counters.mem(), &zero, sizeof zero,
+               first * sizeof zero, count * sizeof zero, 0, nullptr, nullptr);
+}
+
+}  // namespace
+
+const char* integrator_program(IntegratorKind kind)
+{
+    switch (kind) {
+    case IntegratorKind::Aov: return "aov.cl";
+    case IntegratorKind::Path: return "wavefront.cl";
+    case IntegratorKind::Whitted: return "whitted.cl";
+    }
+    return "aov.cl";
+}
+
+std::uint32_t default_wavefront_size(const cl::DeviceInfo& device)
+{
+    return device.is_gpu ? (1u << 20) : (1u << 16);
+}
+
+Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+                   const RenderSettings& settings)
+    : m_context(context),
+      m_settings(settings),
+      m_scene(DeviceScene::upload(context, scene, bvh)),
+      m_program(context, integrator_program(settings.integrator))
+{
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
+    const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
+    m_batch = std::min(pixels, wavefront);
+
+    m_params.camera = make_camera(camera, settings.width, settings.height);
+    m_params.env_radiance = glm::vec4(settings.env_radiance, 0.0f);
+    m_params.width = static_cast<std::uint32_t>(settings.width);
+    m_params.height = static_cast<std::uint32_t>(settings.height);
+    m_params.seed = settings.seed;
+    m_params.max_depth = settings.max_depth;
+    m_params.integrator = integrator_code(settings.integrator);
+    m_params.aov = aov_code(settings.aov);
+    m_params.num_triangles = m_scene.triangle_count;
+    m_params.num_emitters = m_scene.emitter_count;
+    m_params.num_point_lights = m_scene.point_light_count;
+    m_params.num_textures = m_scene.texture_count;
+    m_params.rr_depth = settings.rr_depth;
+    m_params.emitter_power = total_emitter_power(scene, make_emitters(scene));
+
+    m_film = cl::Buffer<glm::vec4>::create(context, pixels, CL_MEM_READ_WRITE, "film");
+    const glm::vec4 zero(0.0f);
+    GC_CL_WHAT("clearing the film", clEnqueueFillBuffer, context.queue(), m_film.mem(), &zero, sizeof zero, 0,
+               m_film.bytes(), 0, nullptr, nullptr);
+
+    if (settings.integrator == IntegratorKind::Aov) {
+        m_aov = m_program.kernel("aov_render");
+    } else if (settings.integrator == IntegratorKind::Path) {
+        m_rays = cl::Buffer<dev::GcRay>::create(context, m_batch, CL_MEM_READ_WRITE, "path rays");
+        m_hits = cl::Buffer<dev::GcHit>::create(context, m_batch, CL_MEM_READ_WRITE, "path hits");
+        m_paths = cl::Buffer<dev::GcPathState>::create(context, m_batch, CL_MEM_READ_WRITE, "path state");
+        m_queue_a = cl::Buffer<std::uint32_t>::create(context, m_batch, CL_MEM_READ_WRITE, "ray queue A");
+        m_queue_b = cl::Buffer<std::uint32_t>::create(context, m_batch, CL_MEM_READ_WRITE, "ray queue B");
+        m_shadow_rays = cl::Buffer<dev::GcShadowRay>::create(context, m_batch, CL_MEM_READ_WRITE, "shadow rays");
+        m_counters = cl::Buffer<std::uint32_t>::create(context, GC_COUNTER_COUNT, CL_MEM_READ_WRITE, "queue counters");
+        m_generate = m_program.kernel("generate");
+        m_extend = m_program.kernel("extend");
+        m_shade = m_program.kernel("shade");
+        m_shadow = m_program.kernel("shadow");
+        m_accumulate = m_program.kernel("accumulate");
+    } else {
+        throw UsageError(std::string("the ") + integrator_name(settings.integrator) + " integrator is not available yet");
+    }
+}
+
+void Renderer::render_sample()
+{
+    const std::uint32_t pixels = m_params.width * m_params.height;
+    m_params.sample_index = m_samples;
+    for (std::uint32_t offset = 0; offset < pixels; offset += m_batch) {
+        m_params.pixel_offset = offset;
+        m_params.pixel_count = std::min(m_batch, pixels - offset);
+        if (m_settings.integrator == IntegratorKind::Aov) run_aov_batch();
+        else run_path_batch();
+    }
+    m_context.finish();
+    ++m_samples;
+}
+
+void Renderer::run_aov_batch()
+{
+    m_aov.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
+                   m_scene.texels, m_film);
+    m_aov.launch(m_context, m_params.pixel_count, 0, "first-hit AOVs");
+}
+
+void Renderer::run_path_batch()
+{
+    const std::uint32_t n = m_params.pixel_count;
+    zero_counters(m_context, m_counters, 0, GC_COUNTER_COUNT);
+    m_generate.set_args(m_params, m_rays, m_paths, m_queue_a, m_counters);
+    m_generate.launch(m_context, n, 0, "camera rays");
+
+    m_shadow.set_args(m_params, m_scene.nodes, m_scene.triangles, m_shadow_rays, m_paths, m_counters);
+    bool a_is_input = true;
+    for (std::uint32_t depth = 0; depth < m_params.max_depth; ++depth) {
+        const cl::Buffer<std::uint32_t>& queue_in = a_is_input ? m_queue_a : m_queue_b;
+        const cl::Buffer<std::uint32_t>& queue_out = a_is_input ? m_queue_b : m_queue_a;
+        const std::uint32_t counter_in = a_is_input ? GC_COUNTER_RAYS_A : GC_COUNTER_RAYS_B;
+        const std::uint32_t counter_out = a_is_input ? GC_COUNTER_RAYS_B : GC_COUNTER_RAYS_A;
+        zero_counters(m_context, m_counters, counter_out, 1);
+        zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
+
+        m_extend.set_args(m_params, m_scene.nodes, m_scene.triangles, m_rays, m_hits, queue_in, m_counters, counter_in);
+        m_extend.launch(m_context, n, 0, "closest-hit rays");
+        m_shade.set_args(m_params, m_scene.attribs, m_scene.materials, m_scene.textures, m_scene.texels,
+                         m_scene.emitters, m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays, m_counters,
+                         counter_in, counter_out);
+        m_shade.launch(m_context, n, 0, "shading");
+        m_shadow.launch(m_context, n, 0, "shadow rays");
+        a_is_input = !a_is_input;
+    }
+    m_accumulate.set_args(m_params, m_paths, m_film);
+    m_accumulate.launch(m_context, n, 0, "film accumulation");
+}
+
+Film Renderer::film() const
+{
+    const std::size_t pixels = m_film.count();
+    std::vector<glm::vec4> sums(pixels);
+    m_film.read(sums);
+    Film film(m_params.width, m_params.height);
+    const float inv = m_samples > 0 ? 1.0f / static_cast<float>(m_samples) : 0.0f;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint32_t x = static_cast<std::uint32_t>(i % m_params.width);
+        const std::uint32_t y = static_cast<std::uint32_t>(i / m_params.width);
+        film.set(x, y, Rgba{sums[i].x * inv, sums[i].y * inv, sums[i].z * inv, 1.0f});
+    }
+    return film;
+}
+
+}  // namespace gc

@@ -1,0 +1,76 @@
+// Renders a scene on one OpenCL device, one sample per pixel at a time. The caller owns the
+// loop (progress, time limit, Ctrl-C) and asks for the film whenever it wants an image.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "gc_types.h"
+#include "host/bvh/bvh.h"
+#include "host/cl/buffer.h"
+#include "host/cl/context.h"
+#include "host/cl/kernel.h"
+#include "host/cl/program.h"
+#include "host/image/film.h"
+#include "host/render/device_scene.h"
+#include "host/render/render_settings.h"
+#include "host/scene/scene.h"
+
+namespace gc {
+
+class Renderer {
+public:
+    Renderer(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+             const RenderSettings& settings);
+
+    // Adds one sample to every pixel (several kernel passes if the image is larger than the
+    // wavefront). Enqueues work and waits for it.
+    void render_sample();
+
+    std::uint32_t samples_done() const { return m_samples; }
+    std::uint32_t wavefront_size() const { return m_batch; }
+    const cl::Program& program() const { return m_program; }
+    const DeviceScene& device_scene() const { return m_scene; }
+
+    // The mean of the samples so far, linear RGB, alpha 1.
+    Film film() const;
+
+private:
+    void run_aov_batch();
+    void run_path_batch();
+
+    const cl::Context& m_context;
+    RenderSettings m_settings;
+    DeviceScene m_scene;
+    dev::GcRenderParams m_params{};
+    cl::Program m_program;
+    std::uint32_t m_batch = 0;
+    std::uint32_t m_samples = 0;
+
+    cl::Buffer<glm::vec4> m_film;
+    // Path integrator state (empty for the aov integrator).
+    cl::Buffer<dev::GcRay> m_rays;
+    cl::Buffer<dev::GcHit> m_hits;
+    cl::Buffer<dev::GcPathState> m_paths;
+    cl::Buffer<std::uint32_t> m_queue_a;
+    cl::Buffer<std::uint32_t> m_queue_b;
+    cl::Buffer<dev::GcShadowRay> m_shadow_rays;
+    cl::Buffer<std::uint32_t> m_counters;
+
+    cl::Kernel m_aov;
+    cl::Kernel m_generate;
+    cl::Kernel m_extend;
+    cl::Kernel m_shade;
+    cl::Kernel m_shadow;
+    cl::Kernel m_accumulate;
+};
+
+// The program file each integrator is built from.
+const char* integrator_program(IntegratorKind kind);
+
+// Default paths in flight per pass: enough to fill a GPU, small enough for a CPU's caches.
+std::uint32_t default_wavefront_size(const cl::DeviceInfo& device);
+
+}  // namespace gc

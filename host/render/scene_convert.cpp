@@ -1,0 +1,178 @@
+#include "host/render/scene_convert.h"
+
+#include <cmath>
+#include <limits>
+
+#include "host/util/error.h"
+
+namespace gc {
+namespace {
+
+glm::vec4 v4(const glm::vec3& v, float w = 0.0f) { return {v.x, v.y, v.z, w}; }
+glm::vec4 v4(const Point3& p, float w = 0.0f) { return {p.x, p.y, p.z, w}; }
+glm::vec4 v4(const Normal3& n, float w = 0.0f) { return {n.x, n.y, n.z, w}; }
+
+std::uint32_t texture_index(int index) { return index < 0 ? GC_INVALID : static_cast<std::uint32_t>(index); }
+
+std::uint32_t material_type(MaterialType type)
+{
+    switch (type) {
+    case MaterialType::Lambert: return GC_MAT_LAMBERT;
+    case MaterialType::Phong: return GC_MAT_PHONG;
+    case MaterialType::Mirror: return GC_MAT_MIRROR;
+    case MaterialType::Dielectric: return GC_MAT_DIELECTRIC;
+    case MaterialType::Pbr: return GC_MAT_PBR;
+    }
+    return GC_MAT_LAMBERT;
+}
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
+{
+    const Vec3 n = cross(b - a, c - a);
+    const float len = length(n);
+    return len > 0.0f && std::isfinite(len) ? Normal3(n / len) : Normal3(0, 0, 0);
+}
+
+}  // namespace
+
+std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
+{
+    const std::size_t n = scene.triangle_count();
+    std::vector<dev::GcTriangleAttribs> out(n);
+    const bool has_uv = !scene.uvs.empty();
+    for (std::size_t i = 0; i < n; ++i) {
+        dev::GcTriangleAttribs& a = out[i];
+        a.n0 = v4(scene.normals[3 * i + 0]);
+        a.n1 = v4(scene.normals[3 * i + 1]);
+        a.n2 = v4(scene.normals[3 * i + 2]);
+        a.ng = v4(face_normal(scene.vertex(i, 0), scene.vertex(i, 1), scene.vertex(i, 2)));
+        if (has_uv) {
+            const glm::vec2 t0 = scene.uvs[3 * i + 0], t1 = scene.uvs[3 * i + 1], t2 = scene.uvs[3 * i + 2];
+            a.uv01 = {t0.x, t0.y, t1.x, t1.y};
+            a.uv2_u = t2.x;
+            a.uv2_v = t2.y;
+        }
+        a.material = scene.material_ids[i];
+        a.flags = (has_uv ? GC_TRIF_HAS_UV : 0u) |
+                  (i < scene.has_vertex_normals.size() && scene.has_vertex_normals[i] ? GC_TRIF_HAS_VERTEX_NORMALS : 0u);
+    }
+    return out;
+}
+
+std::vector<dev::GcMaterial> make_materials(const Scene& scene)
+{
+    std::vector<dev::GcMaterial> out;
+    out.reserve(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        dev::GcMaterial d{};
+        d.albedo = v4(m.albedo, m.opacity);
+        d.specular = v4(m.specular, m.phong_exponent);
+        d.emission = v4(m.emission, m.ior);
+        d.pbr = {m.metallic, m.roughness, m.alpha_cutoff, m.transmission};
+        d.type = material_type(m.type);
+        d.albedo_texture = texture_index(m.albedo_texture);
+        d.metallic_roughness_texture = texture_index(m.metallic_roughness_texture);
+        d.normal_texture = texture_index(m.normal_texture);
+        d.emission_texture = texture_index(m.emission_texture);
+        d.flags = (m.double_sided ? GC_MATF_TWO_SIDED : 0u) |
+                  (m.alpha_mode == AlphaMode::Mask ? GC_MATF_ALPHA_MASK : 0u) |
+                  (m.alpha_mode == AlphaMode::Blend ? GC_MATF_ALPHA_BLEND : 0u);
+        out.push_back(d);
+    }
+    return out;
+}
+
+DeviceTextures make_textures(const Scene& scene)
+{
+    DeviceTextures out;
+    std::size_t total = 0;
+    for (const Texture& t : scene.textures) total += t.texels.size();
+    if (total > std::numeric_limits<std::uint32_t>::max())
+        throw InputError(scene.source_path + ": textures hold " + std::to_string(total) +
+                         " texels, more than the 2^32 a texel index can address");
+    out.texels.reserve(total);
+    for (const Texture& t : scene.textures) {
+        dev::GcTexture d{};
+        d.offset = static_cast<std::uint32_t>(out.texels.size());
+        d.width = static_cast<std::uint32_t>(t.width);
+        d.height = static_cast<std::uint32_t>(t.height);
+        auto wrap_flags = [](WrapMode mode, std::uint32_t clamp_flag, std::uint32_t mirror_flag) {
+            return mode == WrapMode::ClampToEdge ? clamp_flag : (mode == WrapMode::MirroredRepeat ? mirror_flag : 0u);
+        };
+        d.flags = (t.srgb ? GC_TEXF_SRGB : 0u) | wrap_flags(t.wrap_s, GC_TEXF_CLAMP_S, GC_TEXF_MIRROR_S) |
+                  wrap_flags(t.wrap_t, GC_TEXF_CLAMP_T, GC_TEXF_MIRROR_T) | (t.nearest ? GC_TEXF_NEAREST : 0u);
+        out.textures.push_back(d);
+        out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
+    }
+    return out;
+}
+
+std::vector<dev::GcPointLight> make_point_lights(const Scene& scene)
+{
+    std::vector<dev::GcPointLight> out;
+    for (const PointLight& l : scene.point_lights) out.push_back({v4(l.position), v4(l.intensity)});
+    return out;
+}
+
+std::vector<dev::GcEmitter> make_emitters(const Scene& scene)
+{
+    std::vector<dev::GcEmitter> out;
+    double total_power = 0.0;
+    for (std::uint32_t tri : scene.emissive_triangles()) {
+        const Point3 a = scene.vertex(tri, 0), b = scene.vertex(tri, 1), c = scene.vertex(tri, 2);
+        const float area = 0.5f * length(cross(b - a, c - a));
+        const Material& m = scene.materials[scene.material_ids[tri]];
+        const double power = static_cast<double>(area) * luminance(m.emission);
+        if (!(area > 0.0f) || !(power > 0.0)) continue;
+        dev::GcEmitter e{};
+        e.v0 = v4(a);
+        e.v1 = v4(b);
+        e.v2 = v4(c);
+        e.triangle = tri;
+        e.area = area;
+        e.pmf = static_cast<float>(power);  // normalised below
+        total_power += power;
+        out.push_back(e);
+    }
+    double running = 0.0;
+    for (dev::GcEmitter& e : out) {
+        const double p = static_cast<double>(e.pmf) / total_power;
+        running += p;
+        e.pmf = static_cast<float>(p);
+        e.cdf = static_cast<float>(running);
+    }
+    if (!out.empty()) out.back().cdf = 1.0f;
+    return out;
+}
+
+dev::GcCamera make_camera(const Camera& camera, int width, int height)
+{
+    const Vec3 forward = normalize(camera.look_at - camera.look_from);
+    Vec3 right = cross(forward, camera.up);
+    if (!(length(right) > 1e-8f)) {
+        // up parallel to the view direction: pick any perpendicular up rather than NaNs.
+        right = cross(forward, std::fabs(forward.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0));
+    }
+    right = normalize(right);
+    const Vec3 up = cross(right, forward);
+    const float tan_half = std::tan(0.5f * camera.vfov_degrees * 3.14159265358979f / 180.0f);
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    dev::GcCamera d{};
+    d.origin = v4(camera.look_from);
+    d.forward = v4(forward.glm());
+    d.right = v4((right * (tan_half * aspect)).glm());
+    d.up = v4((up * tan_half).glm());
+    return d;
+}
+
+dev::GcRay to_device(const Ray& ray)
+{
+    dev::GcRay r{};
+    r.org_tmin = v4(ray.origin, ray.tmin);
+    r.dir_tmax = {ray.direction.x, ray.direction.y, ray.direction.z, ray.tmax};
+    return r;
+}
+
+}  // namespace gc

@@ -1,0 +1,17 @@
+/* extend.cl — closest hit for every queued ray. */
+#include "gc_traverse.h"
+
+__kernel void extend(const GcRenderParams params,
+                     __global const GcBvhNode* nodes,
+                     __global const GcTriangle* tris,
+                     __global const GcRay* rays,
+                     __global GcHit* hits,
+                     __global const uint* ray_queue,
+                     __global const uint* counters,
+                     const uint queue_counter)
+{
+    const uint q = get_global_id(0);
+    if (q >= counters[queue_counter] || q >= params.pixel_count) return;
+    const uint slot = ray_queue[q];
+    hits[slot] = gc_trace_closest(nodes, tris, rays[slot]);
+}

@@ -1,0 +1,75 @@
+/*
+ * gc_path.h — the pieces of the path integrator that are pure functions: spawning rays off
+ * a surface, choosing and sampling an emitter, and the light density used by MIS. Shared so
+ * the host tests and the Vulkan reference make the same decisions as the OpenCL kernels.
+ */
+#ifndef GC_PATH_H
+#define GC_PATH_H
+
+#include "gc_accessors.h"
+#include "gc_sampling.h"
+
+#ifndef GC_EMITTERS_PARAM
+#define GC_EMITTERS_PARAM GC_GLOBAL const GcEmitter* emitters
+#define GC_EMITTERS_ARG emitters
+#define GC_EMITTER(i) emitters[i]
+#endif
+
+GC_NAMESPACE_BEGIN
+
+/* Moves p off its surface along the geometric normal n (pointing to the side the new ray
+ * leaves from) by a few ulps of p's coordinates, so the new ray cannot re-hit the surface.
+ * Wächter & Binder 2019, "A Fast and Robust Method for Avoiding Self-Intersection"
+ * (Ray Tracing Gems, ch. 6). Integer arithmetic on the float bits: identical on every device. */
+GC_FUNC float gc_offset_component(float p, float n)
+{
+    const float origin = 1.0f / 32.0f;
+    const float float_scale = 1.0f / 65536.0f;
+    const float int_scale = 256.0f;
+    if (fabs(p) < origin) return p + float_scale * n;
+    const int of = gc_int(int_scale * n);
+    return gc_as_float(gc_as_uint(p) + gc_uint(p < 0.0f ? -of : of));
+}
+
+GC_FUNC float3 gc_offset_ray_origin(float3 p, float3 n)
+{
+    return make_float3(gc_offset_component(p.x, n.x), gc_offset_component(p.y, n.y),
+                       gc_offset_component(p.z, n.z));
+}
+
+/* Luminance weights used for emitter power; make_emitters (host) uses the same. */
+GC_FUNC float gc_emitter_luminance(float3 radiance) { return gc_luminance(radiance); }
+
+/* The emitter whose cdf interval contains u: the first i with u < cdf[i]. */
+GC_FUNC uint gc_pick_emitter(GC_EMITTERS_PARAM, uint count, float u)
+{
+    uint lo = 0u;
+    uint hi = count - 1u;
+    while (lo < hi) {
+        const uint mid = (lo + hi) / 2u;
+        if (u < GC_EMITTER(mid).cdf) hi = mid;
+        else lo = mid + 1u;
+    }
+    return lo;
+}
+
+/* Emits on the front face (counter-clockwise winding seen from the front, i.e. the side ng
+ * points to) unless the material is two-sided. cos_out = cosine between ng and the direction
+ * the light leaves in. */
+GC_FUNC bool gc_emits_toward(GcMaterial m, float cos_out)
+{
+    return cos_out > 0.0f || ((m.flags & GC_MATF_TWO_SIDED) != 0u && cos_out < 0.0f);
+}
+
+/* Density, per unit solid angle at the receiving point, with which next-event estimation
+ * samples a point on an emissive triangle: selection (area * luminance / total power)
+ * times uniform area sampling (1 / area), converted by distance^2 / cos. */
+GC_FUNC float gc_light_pdf_w(float3 emission, float emitter_power, float distance, float cos_light)
+{
+    const float pdf_area = gc_emitter_luminance(emission) / emitter_power;
+    return pdf_area * distance * distance / fabs(cos_light);
+}
+
+GC_NAMESPACE_END
+
+#endif /* GC_PATH_H */

@@ -1,0 +1,18 @@
+/*
+ * wavefront.cl — the path integrator as wavefront stages (one program, one kernel each):
+ *
+ *   generate -> [ extend -> shade -> shadow ] x max_depth -> accumulate
+ *
+ * A pass renders one sample index for a batch of pixels. Path slot i owns pixel
+ * pixel_offset + i for the whole pass. Queues hold slot indices, pushed with atomic_inc;
+ * every stage is launched over the queue's capacity and returns early past the queue's
+ * count, so the host never reads a counter mid-pass (pbrt-v4's WorkQueue scheme). Because
+ * a path's random numbers depend only on (pixel, sample, bounce, dimension) and a slot is
+ * written by one work-item per stage, the image does not depend on queue order: the same
+ * device gives the same bits every run.
+ */
+#include "generate.cl"
+#include "extend.cl"
+#include "shade.cl"
+#include "shadow.cl"
+#include "accumulate.cl"
