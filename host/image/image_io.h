@@ -1,0 +1,56 @@
+// Image files: write a Film (atomically) and read one back.
+//
+// Formats by extension (case-insensitive):
+//   .pfm  float RGB, built in (rows bottom to top, as the PFM spec says), alpha dropped
+//   .ppm  8-bit sRGB (binary P6), built in, alpha dropped
+//   with OpenImageIO (GC_HAVE_OIIO, CMake option GEOCOLD_WITH_OIIO):
+//   .exr  linear float RGBA with the metadata as attributes "geocold:device", "geocold:integrator",
+//         "geocold:scene" (strings), "geocold:spp" (int), "geocold:seconds" (float),
+//         "geocold:seed" (string: EXR has no unsigned attribute) and "Software"
+//   .tif/.tiff  linear float RGBA;  .hdr  linear float RGB
+//   .png and any other format OIIO writes: 8-bit sRGB RGB, metadata as text where the format has it
+// 8-bit outputs are the linear values clamped to [0, 1] and encoded with the sRGB OETF
+// (IEC 61966-2-1) — no tone mapping: scale the film first if you want an exposure change.
+//
+// Writes never leave a truncated file: the image goes to "<path>.tmp-<pid>" in the same
+// directory, is fsync'ed, then renamed over the target; on any failure the temp file is
+// removed and OutputError names the path and the reason (errno text), so the previous
+// file at <path>, if any, is untouched.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "host/image/film.h"
+
+namespace gc {
+
+void write_image(const std::filesystem::path& path, const Film& film, const ImageMetadata& meta);
+
+// Fails (OutputError) before any rendering when write_image(path, ...) cannot succeed: an
+// unsupported extension (or one that needs OIIO in a build without it), a missing parent
+// directory, a target that is a directory, or a directory where no file can be created.
+void check_output_path(const std::filesystem::path& path);
+
+// .pfm and .ppm are built in; .exr/.png/.hdr/.tif/... need OIIO. Integer-valued files
+// (PNG, PPM, 8/16-bit TIFF) are decoded from sRGB to linear unless they say they are linear.
+// One channel is read as grey; missing alpha is 1. Throws InputError naming the file.
+Film read_image(const std::filesystem::path& path);
+
+// True when this build reads and writes through OpenImageIO.
+bool image_io_has_oiio();
+
+// The sRGB transfer functions (IEC 61966-2-1), on [0, 1].
+float srgb_encode(float linear);
+float srgb_decode(float encoded);
+// Clamp to [0, 1] (NaN -> 0), encode, round to 8 bits.
+uint8_t linear_to_srgb8(float linear);
+
+namespace image_io_testing {
+// Makes the next write_image fail, after the temp file is written and before it is synced,
+// as if the system call had failed with errno `error` (e.g. ENOSPC). 0 clears it.
+void fail_next_write(int error);
+}  // namespace image_io_testing
+
+}  // namespace gc
