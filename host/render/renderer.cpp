@@ -37,7 +37,7 @@ float total_emitter_power(const Scene& scene, const std::vector<dev::GcEmitter>&
     double total = 0.0;
     for (const dev::GcEmitter& e : emitters) {
         const glm::vec3 le = scene.materials[scene.material_ids[e.triangle]].emission;
-        total += static_cast<double>(e.area) * (0.2126 * le.r + 0.7152 * le.g + 0.0722 * le.b);
+        total += static_cast<double>(e.area) * (0.2126 * le.x + 0.7152 * le.y + 0.0722 * le.z);
     }
     return static_cast<float>(total);
 }
@@ -113,6 +113,8 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
         m_shade = m_program.kernel("shade");
         m_shadow = m_program.kernel("shadow");
         m_accumulate = m_program.kernel("accumulate");
+    } else if (settings.integrator == IntegratorKind::Whitted) {
+        m_whitted = m_program.kernel("whitted_render"); // [whitted hook]
     } else {
         throw UsageError(std::string("the ") + integrator_name(settings.integrator) + " integrator is not available yet");
     }
@@ -126,6 +128,7 @@ void Renderer::render_sample()
         m_params.pixel_offset = offset;
         m_params.pixel_count = std::min(m_batch, pixels - offset);
         if (m_settings.integrator == IntegratorKind::Aov) run_aov_batch();
+        else if (m_settings.integrator == IntegratorKind::Whitted) run_whitted_batch(); // [whitted hook]
         else run_path_batch();
     }
     m_context.finish();
@@ -137,6 +140,14 @@ void Renderer::run_aov_batch()
     m_aov.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
                    m_scene.texels, m_film);
     m_aov.launch(m_context, m_params.pixel_count, 0, "first-hit AOVs");
+}
+
+// [whitted hook] One work-item per pixel of the batch, like run_aov_batch.
+void Renderer::run_whitted_batch()
+{
+    m_whitted.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials,
+                       m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights, m_film);
+    m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
 }
 
 void Renderer::run_path_batch()

@@ -40,6 +40,7 @@ public:
 private:
     void run_aov_batch();
     void run_path_batch();
+    void run_whitted_batch(); // [whitted hook]
 
     const cl::Context& m_context;
     RenderSettings m_settings;
@@ -65,6 +66,7 @@ private:
     cl::Kernel m_shade;
     cl::Kernel m_shadow;
     cl::Kernel m_accumulate;
+    cl::Kernel m_whitted; // [whitted hook]
 };
 
 // The program file each integrator is built from.

@@ -26,7 +26,7 @@ std::uint32_t material_type(MaterialType type)
     return GC_MAT_LAMBERT;
 }
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
 {

@@ -39,7 +39,7 @@ struct Material {
     int normal_texture = -1;
     int emission_texture = -1;
 
-    bool is_emissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
+    bool is_emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
 
 struct Texture {
@@ -62,7 +62,9 @@ struct Camera {
 
 struct PointLight {
     Point3 position;
-    glm::vec3 intensity{1.0f}; // radiant intensity, W/sr per channel
+    // Radiant intensity, W/sr per channel. glTF gives candela; we take 1 cd as 1 W/sr (no
+    // 683 lm/W factor), so a scene's lights keep the relative brightness its author saw.
+    glm::vec3 intensity{1.0f};
 };
 
 struct Scene {
@@ -70,6 +72,7 @@ struct Scene {
     // normal at each corner when the file gives none (then has_vertex_normals is false).
     std::vector<Point3> positions;
     std::vector<Normal3> normals;
+    // Texture coordinates follow glTF: (0, 0) is the top-left texel (OBJ's v becomes 1 - v).
     std::vector<glm::vec2> uvs;                 // three per triangle, or empty
     std::vector<std::uint32_t> material_ids;    // one per triangle, index into materials
     std::vector<std::uint8_t> has_vertex_normals; // one per triangle (0/1)

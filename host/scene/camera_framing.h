@@ -1,0 +1,29 @@
+// Choosing the view: the file's camera, a framed default when it has none, and the user's
+// overrides on top.
+#pragma once
+
+#include <optional>
+
+#include "host/scene/scene.h"
+
+namespace gc {
+
+struct CameraOverrides {
+    std::optional<Point3> look_from;
+    std::optional<Point3> look_at;
+    std::optional<Vec3> up;
+    std::optional<float> fov; // full vertical field of view, degrees
+};
+
+// Looks at the centre of the scene's bounds from +Z (down -Z, +Y up) with a 40-degree
+// vertical field of view, far enough that the bounding sphere fits in the view with a 10%
+// margin. The sphere fits the vertical angle; for images at least as wide as they are tall
+// it then fits horizontally too. An empty scene gives the default Camera.
+Camera frame_camera(const Scene& scene);
+
+// The file's camera (or frame_camera's) with the overrides applied. Throws UsageError when the
+// result is unusable: look_from == look_at, up parallel to the view direction, a zero up, or
+// a field of view outside (0, 180) degrees.
+Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides);
+
+}  // namespace gc

@@ -1,0 +1,602 @@
+#include "host/scene/gltf_loader.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
+
+#include "host/math/transform.h"
+#include "host/scene/glb_check.h"
+#include "host/scene/texture_io.h"
+#include "host/scene/triangle_sink.h"
+#include "host/util/error.h"
+#include "host/util/log.h"
+
+namespace gc {
+
+namespace {
+
+constexpr double k_pi = 3.14159265358979323846;
+
+std::vector<unsigned char> read_binary_file(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": file not found");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string() + ": cannot open file");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path.string() + ": read error");
+    return bytes;
+}
+
+// A validated view of an accessor's elements inside its buffer.
+struct AccessorView {
+    const unsigned char* base = nullptr; // first element; null = all zeros (no bufferView)
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    int component_type = 0;
+    int components = 0;
+    bool normalized = false;
+
+    // Component k of element i as a float (normalized integers map to [0,1] / [-1,1]).
+    float get(std::size_t i, int k) const
+    {
+        if (!base) return 0.0f;
+        const unsigned char* p = base + i * stride;
+        switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p + 4 * k, 4); return v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { const float v = p[k]; return normalized ? v / 255.0f : v; }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            std::int8_t v; std::memcpy(&v, p + k, 1);
+            return normalized ? std::fmax(v / 127.0f, -1.0f) : static_cast<float>(v);
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            std::uint16_t v; std::memcpy(&v, p + 2 * k, 2);
+            return normalized ? v / 65535.0f : static_cast<float>(v);
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            std::int16_t v; std::memcpy(&v, p + 2 * k, 2);
+            return normalized ? std::fmax(v / 32767.0f, -1.0f) : static_cast<float>(v);
+        }
+        default: return 0.0f;
+        }
+    }
+
+    std::uint32_t index(std::size_t i) const
+    {
+        if (!base) return 0;
+        const unsigned char* p = base + i * stride;
+        switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
+        default: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
+        }
+    }
+};
+
+std::string type_name(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    default: return "type " + std::to_string(type);
+    }
+}
+
+std::string component_name(int ct)
+{
+    switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "component type " + std::to_string(ct);
+    }
+}
+
+enum class Use { Position, Normal, TexCoord, Index };
+
+class GltfConverter {
+public:
+    GltfConverter(const tinygltf::Model& model, const std::string& name, Scene& scene)
+        : m_model(model), m_name(name), m_scene(scene)
+    {
+    }
+
+    void convert_materials()
+    {
+        for (std::size_t i = 0; i < m_model.materials.size(); ++i)
+            m_scene.materials.push_back(convert_material(m_model.materials[i], static_cast<int>(i)));
+    }
+
+    void convert_scene(int scene_index)
+    {
+        std::vector<int> roots;
+        if (scene_index >= 0) {
+            roots = m_model.scenes[static_cast<std::size_t>(scene_index)].nodes;
+        } else {
+            // No scenes in the file: every node that is nobody's child is a root.
+            std::vector<char> is_child(m_model.nodes.size(), 0);
+            for (const tinygltf::Node& n : m_model.nodes)
+                for (int c : n.children)
+                    if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = 1;
+            for (std::size_t i = 0; i < m_model.nodes.size(); ++i)
+                if (!is_child[i]) roots.push_back(static_cast<int>(i));
+        }
+
+        // Depth-first in file order, with an explicit stack: a hostile file cannot overflow
+        // ours, and a node met twice (a cycle or a shared child) is an error, as the spec says
+        // the hierarchy is a set of disjoint trees.
+        std::vector<char> visited(m_model.nodes.size(), 0);
+        struct Visit { int node; glm::mat4 parent; };
+        std::vector<Visit> stack;
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+        while (!stack.empty()) {
+            const Visit v = stack.back();
+            stack.pop_back();
+            if (v.node < 0 || static_cast<std::size_t>(v.node) >= m_model.nodes.size())
+                fail("node index " + std::to_string(v.node) + " out of range (" + std::to_string(m_model.nodes.size()) + " nodes)");
+            if (visited[static_cast<std::size_t>(v.node)]++)
+                fail("node " + std::to_string(v.node) + " is reached twice (the node hierarchy must be a tree)");
+            const tinygltf::Node& node = m_model.nodes[static_cast<std::size_t>(v.node)];
+            const glm::mat4 world = v.parent * local_matrix(node, v.node);
+            const Transform to_world(world);
+            if (node.mesh >= 0) add_mesh(node.mesh, to_world);
+            if (node.camera >= 0) add_camera(node.camera, to_world);
+            add_light(node, to_world);
+            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world});
+        }
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(m_name + ": " + what); }
+
+    glm::mat4 local_matrix(const tinygltf::Node& node, int index) const
+    {
+        glm::mat4 m(1.0f);
+        if (node.matrix.size() == 16) {
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) m[c][r] = static_cast<float>(node.matrix[static_cast<std::size_t>(4 * c + r)]);
+        } else {
+            glm::mat4 t(1.0f), r(1.0f), s(1.0f);
+            if (node.translation.size() == 3)
+                t = glm::translate(glm::mat4(1.0f), glm::vec3(static_cast<float>(node.translation[0]),
+                                                              static_cast<float>(node.translation[1]),
+                                                              static_cast<float>(node.translation[2])));
+            if (node.rotation.size() == 4) {
+                // glTF stores (x, y, z, w); glm::quat's constructor takes w first.
+                const glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                                  static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+                r = glm::mat4_cast(glm::normalize(q));
+            }
+            if (node.scale.size() == 3)
+                s = glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(node.scale[0]), static_cast<float>(node.scale[1]),
+                                                          static_cast<float>(node.scale[2])));
+            m = t * r * s;
+        }
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(m[c][r])) fail("node " + std::to_string(index) + " has a non-finite transform");
+        return m;
+    }
+
+    // Checks accessor `index` against its bufferView and buffer and against what `use` allows.
+    AccessorView view(int index, Use use, const std::string& where) const
+    {
+        const std::string ctx = where + ", accessor " + std::to_string(index) + ": ";
+        if (index < 0 || static_cast<std::size_t>(index) >= m_model.accessors.size())
+            fail(where + ": accessor index " + std::to_string(index) + " out of range (" +
+                 std::to_string(m_model.accessors.size()) + " accessors)");
+        const tinygltf::Accessor& a = m_model.accessors[static_cast<std::size_t>(index)];
+        if (a.sparse.isSparse) fail(ctx + "sparse accessors are not supported");
+
+        const int ct = a.componentType;
+        bool ok_type = false;
+        switch (use) {
+        case Use::Position:
+        case Use::Normal: ok_type = a.type == TINYGLTF_TYPE_VEC3 && ct == TINYGLTF_COMPONENT_TYPE_FLOAT; break;
+        case Use::TexCoord:
+            ok_type = a.type == TINYGLTF_TYPE_VEC2 &&
+                      (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                       (a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+            break;
+        case Use::Index:
+            ok_type = a.type == TINYGLTF_TYPE_SCALAR &&
+                      (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                       ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+            break;
+        }
+        if (!ok_type) {
+            static const char* expected[] = {"VEC3 FLOAT", "VEC3 FLOAT", "VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT",
+                                             "SCALAR UNSIGNED_BYTE/SHORT/INT"};
+            fail(ctx + type_name(a.type) + " " + component_name(ct) + (a.normalized ? " (normalized)" : "") +
+                 " where " + expected[static_cast<int>(use)] + " is required");
+        }
+
+        AccessorView v;
+        v.count = a.count;
+        v.component_type = ct;
+        v.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+        v.normalized = a.normalized;
+        const std::size_t element = static_cast<std::size_t>(v.components) *
+                                    static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
+        if (a.bufferView < 0) return v;  // spec: no bufferView means all zeros
+        if (static_cast<std::size_t>(a.bufferView) >= m_model.bufferViews.size())
+            fail(ctx + "bufferView " + std::to_string(a.bufferView) + " out of range (" +
+                 std::to_string(m_model.bufferViews.size()) + " bufferViews)");
+        const tinygltf::BufferView& bv = m_model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+        if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= m_model.buffers.size())
+            fail(ctx + "bufferView " + std::to_string(a.bufferView) + " names buffer " + std::to_string(bv.buffer) +
+                 ", out of range (" + std::to_string(m_model.buffers.size()) + " buffers)");
+        const tinygltf::Buffer& buffer = m_model.buffers[static_cast<std::size_t>(bv.buffer)];
+        if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
+            fail(ctx + "bufferView " + std::to_string(a.bufferView) + " (bytes " + std::to_string(bv.byteOffset) + " + " +
+                 std::to_string(bv.byteLength) + ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
+                 std::to_string(buffer.data.size()) + " bytes)");
+        v.stride = bv.byteStride ? bv.byteStride : element;
+        if (v.stride < element)
+            fail(ctx + "byteStride " + std::to_string(v.stride) + " is smaller than an element (" + std::to_string(element) + " bytes)");
+        if (v.count > 0) {
+            // count <= byteLength first, so the product below cannot overflow.
+            if (v.count > bv.byteLength || a.byteOffset > bv.byteLength ||
+                v.stride * (v.count - 1) + element > bv.byteLength - a.byteOffset)
+                fail(ctx + std::to_string(v.count) + " elements of " + std::to_string(element) + " bytes (stride " +
+                     std::to_string(v.stride) + ") from byte " + std::to_string(a.byteOffset) +
+                     " run past the end of bufferView " + std::to_string(a.bufferView) + " (" +
+                     std::to_string(bv.byteLength) + " bytes)");
+        }
+        v.base = buffer.data.data() + bv.byteOffset + a.byteOffset;
+        return v;
+    }
+
+    void add_mesh(int mesh_index, const Transform& to_world)
+    {
+        if (static_cast<std::size_t>(mesh_index) >= m_model.meshes.size())
+            fail("mesh index " + std::to_string(mesh_index) + " out of range (" + std::to_string(m_model.meshes.size()) + " meshes)");
+        const tinygltf::Mesh& mesh = m_model.meshes[static_cast<std::size_t>(mesh_index)];
+        const bool flip = to_world.swaps_handedness();
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = mesh.primitives[p];
+            const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
+                if (m_warned_modes.insert(prim.mode).second)
+                    log_warning(m_name + ": " + where + ": primitive mode " + std::to_string(prim.mode) +
+                                " is not supported (only TRIANGLES); skipped");
+                continue;
+            }
+            add_primitive(prim, where, to_world, flip);
+        }
+    }
+
+    void add_primitive(const tinygltf::Primitive& prim, const std::string& where, const Transform& to_world, bool flip)
+    {
+        const auto pos_it = prim.attributes.find("POSITION");
+        if (pos_it == prim.attributes.end()) fail(where + ": no POSITION attribute");
+        const AccessorView pos = view(pos_it->second, Use::Position, where);
+        const std::size_t nv = pos.count;
+
+        std::optional<AccessorView> nrm, uv;
+        if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) nrm = view(it->second, Use::Normal, where);
+        if (const auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) uv = view(it->second, Use::TexCoord, where);
+        if (nrm && nrm->count != nv)
+            fail(where + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " + std::to_string(nv));
+        if (uv && uv->count != nv)
+            fail(where + ": TEXCOORD_0 has " + std::to_string(uv->count) + " elements, POSITION " + std::to_string(nv));
+
+        std::optional<AccessorView> idx;
+        if (prim.indices >= 0) idx = view(prim.indices, Use::Index, where);
+        const std::size_t corners = idx ? idx->count : nv;
+        if (corners % 3 != 0)
+            fail(where + ": " + std::to_string(corners) + (idx ? " indices" : " vertices") + " is not a multiple of 3");
+
+        std::uint32_t material;
+        if (prim.material >= 0) {
+            if (static_cast<std::size_t>(prim.material) >= m_model.materials.size())
+                fail(where + ": material " + std::to_string(prim.material) + " out of range (" +
+                     std::to_string(m_model.materials.size()) + " materials)");
+            material = static_cast<std::uint32_t>(prim.material);
+        } else {
+            material = default_material();
+        }
+
+        // Transform each vertex once.
+        std::vector<Point3> world_pos(nv);
+        std::vector<Normal3> world_nrm(nrm ? nv : 0);
+        for (std::size_t i = 0; i < nv; ++i) {
+            const Point3 p(pos.get(i, 0), pos.get(i, 1), pos.get(i, 2));
+            if (!is_finite(p))
+                fail(where + ", accessor " + std::to_string(pos_it->second) + ": position " + std::to_string(i) + " is not finite");
+            world_pos[i] = to_world.apply(p);
+            if (nrm) world_nrm[i] = to_world.apply(Normal3(nrm->get(i, 0), nrm->get(i, 1), nrm->get(i, 2)));
+        }
+
+        TriangleSink sink(m_scene, corners / 3);
+        for (std::size_t t = 0; t < corners / 3; ++t) {
+            std::size_t vi[3];
+            for (int j = 0; j < 3; ++j) {
+                vi[j] = idx ? idx->index(3 * t + static_cast<std::size_t>(j)) : 3 * t + static_cast<std::size_t>(j);
+                if (vi[j] >= nv)
+                    fail(where + ", accessor " + std::to_string(prim.indices) + ": index " + std::to_string(vi[j]) +
+                         " at position " + std::to_string(3 * t + static_cast<std::size_t>(j)) + " out of range (" +
+                         std::to_string(nv) + " vertices)");
+            }
+            if (flip) std::swap(vi[1], vi[2]);
+            SinkCorner c[3];
+            for (int j = 0; j < 3; ++j) {
+                c[j].position = world_pos[vi[j]];
+                if (nrm) c[j].normal = world_nrm[vi[j]];
+                if (uv) c[j].uv = glm::vec2(uv->get(vi[j], 0), uv->get(vi[j], 1));
+            }
+            sink.add(c, nrm.has_value(), uv.has_value(), material);
+        }
+    }
+
+    void add_camera(int camera_index, const Transform& to_world)
+    {
+        if (m_scene.camera) return;
+        if (static_cast<std::size_t>(camera_index) >= m_model.cameras.size())
+            fail("camera index " + std::to_string(camera_index) + " out of range (" + std::to_string(m_model.cameras.size()) + " cameras)");
+        const tinygltf::Camera& cam = m_model.cameras[static_cast<std::size_t>(camera_index)];
+        if (cam.type != "perspective") return;
+        const double yfov = cam.perspective.yfov;
+        if (!(yfov > 0.0 && yfov < k_pi)) {
+            log_warning(m_name + ": camera " + std::to_string(camera_index) + " has yfov " + std::to_string(yfov) + "; ignored");
+            return;
+        }
+        // glTF cameras look down their local -Z with +Y up.
+        Camera c;
+        c.look_from = to_world.apply(Point3(0, 0, 0));
+        const Vec3 forward = to_world.apply(Vec3(0, 0, -1));
+        const Vec3 up = to_world.apply(Vec3(0, 1, 0));
+        if (!(length(forward) > 0.0f) || !(length(up) > 0.0f)) {
+            log_warning(m_name + ": camera " + std::to_string(camera_index) + " has a degenerate transform; ignored");
+            return;
+        }
+        c.look_at = c.look_from + normalize(forward);
+        c.up = normalize(up);
+        c.vfov_degrees = static_cast<float>(yfov * 180.0 / k_pi);
+        m_scene.camera = c;
+    }
+
+    // KHR_lights_punctual. glTF gives point-light intensity in candela (lm/sr); the renderer
+    // works in unitless linear RGB "W/sr", so we take 1 cd as 1 W/sr (no 683 lm/W factor):
+    // PointLight::intensity = color * intensity.
+    void add_light(const tinygltf::Node& node, const Transform& to_world)
+    {
+        const auto ext = node.extensions.find("KHR_lights_punctual");
+        if (ext == node.extensions.end() || !ext->second.Has("light")) return;
+        const tinygltf::Value& lv = ext->second.Get("light");
+        if (!lv.IsNumber()) fail("KHR_lights_punctual: light index is not a number");
+        const int li = lv.GetNumberAsInt();
+        if (li < 0 || static_cast<std::size_t>(li) >= m_model.lights.size())
+            fail("light index " + std::to_string(li) + " out of range (" + std::to_string(m_model.lights.size()) + " lights)");
+        const tinygltf::Light& light = m_model.lights[static_cast<std::size_t>(li)];
+        if (light.type != "point") {
+            log_warning(m_name + ": light " + std::to_string(li) + " is a " + light.type + " light; only point lights are supported, skipped");
+            return;
+        }
+        glm::vec3 color(1.0f);
+        if (light.color.size() == 3)
+            color = glm::vec3(static_cast<float>(light.color[0]), static_cast<float>(light.color[1]), static_cast<float>(light.color[2]));
+        PointLight pl;
+        pl.position = to_world.apply(Point3(0, 0, 0));
+        pl.intensity = color * static_cast<float>(light.intensity);
+        if (!is_finite(pl.position) || !std::isfinite(pl.intensity.x + pl.intensity.y + pl.intensity.z))
+            fail("light " + std::to_string(li) + " has a non-finite position or intensity");
+        m_scene.point_lights.push_back(pl);
+    }
+
+    static float number(const tinygltf::ExtensionMap& ext, const char* name, const char* key, float fallback)
+    {
+        const auto it = ext.find(name);
+        if (it == ext.end() || !it->second.Has(key)) return fallback;
+        const tinygltf::Value& v = it->second.Get(key);
+        return v.IsNumber() ? static_cast<float>(v.GetNumberAsDouble()) : fallback;
+    }
+
+    Material convert_material(const tinygltf::Material& m, int index)
+    {
+        const std::string where = "material " + std::to_string(index) + (m.name.empty() ? "" : " '" + m.name + "'");
+        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+        Material out;
+        out.name = m.name.empty() ? "material " + std::to_string(index) : m.name;
+        out.type = MaterialType::Pbr;
+        if (pbr.baseColorFactor.size() == 4) {
+            out.albedo = glm::vec3(static_cast<float>(pbr.baseColorFactor[0]), static_cast<float>(pbr.baseColorFactor[1]),
+                                   static_cast<float>(pbr.baseColorFactor[2]));
+            out.opacity = static_cast<float>(pbr.baseColorFactor[3]);
+        } else {
+            out.albedo = glm::vec3(1.0f);
+        }
+        out.metallic = static_cast<float>(pbr.metallicFactor);
+        out.roughness = static_cast<float>(pbr.roughnessFactor);
+        if (m.emissiveFactor.size() == 3)
+            out.emission = glm::vec3(static_cast<float>(m.emissiveFactor[0]), static_cast<float>(m.emissiveFactor[1]),
+                                     static_cast<float>(m.emissiveFactor[2]));
+        out.emission *= number(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0f);
+        out.ior = number(m.extensions, "KHR_materials_ior", "ior", 1.5f);
+        out.transmission = number(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0f);
+        out.double_sided = m.doubleSided;
+        out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+        if (m.alphaMode == "MASK") out.alpha_mode = AlphaMode::Mask;
+        else if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::Blend;
+        else out.alpha_mode = AlphaMode::Opaque;
+
+        const float values[] = {out.albedo.x, out.albedo.y, out.albedo.z, out.opacity, out.metallic, out.roughness,
+                                out.emission.x, out.emission.y, out.emission.z, out.ior, out.transmission, out.alpha_cutoff};
+        for (float v : values)
+            if (!std::isfinite(v)) fail(where + ": non-finite factor");
+
+        out.albedo_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, where);
+        out.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false, where);
+        out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, false, where);
+        out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, where);
+        return out;
+    }
+
+    static WrapMode wrap(int mode)
+    {
+        switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::MirroredRepeat;
+        default: return WrapMode::Repeat;
+        }
+    }
+
+    // Scene texture for glTF texture `index`, decoded once per colour space.
+    int texture(int index, int tex_coord, bool srgb, const std::string& where)
+    {
+        if (index < 0) return -1;
+        if (static_cast<std::size_t>(index) >= m_model.textures.size())
+            fail(where + ": texture " + std::to_string(index) + " out of range (" + std::to_string(m_model.textures.size()) + " textures)");
+        if (tex_coord != 0 && m_warned_texcoord.insert(index).second)
+            log_warning(m_name + ": " + where + ": texture " + std::to_string(index) + " uses TEXCOORD_" +
+                        std::to_string(tex_coord) + "; only TEXCOORD_0 is loaded, so it is used instead");
+        const auto key = std::make_pair(index, srgb);
+        if (const auto found = m_textures.find(key); found != m_textures.end()) return found->second;
+
+        const tinygltf::Texture& tex = m_model.textures[static_cast<std::size_t>(index)];
+        if (tex.source < 0 || static_cast<std::size_t>(tex.source) >= m_model.images.size())
+            fail("texture " + std::to_string(index) + ": image " + std::to_string(tex.source) + " out of range (" +
+                 std::to_string(m_model.images.size()) + " images)");
+        const tinygltf::Image& img = m_model.images[static_cast<std::size_t>(tex.source)];
+        const std::string img_name = "image " + std::to_string(tex.source) + (img.uri.empty() ? "" : " '" + img.uri + "'");
+        if (img.width <= 0 || img.height <= 0 || img.component < 1 || img.component > 4 || (img.bits != 8 && img.bits != 16))
+            fail(img_name + ": not decoded (" + std::to_string(img.width) + "x" + std::to_string(img.height) + ", " +
+                 std::to_string(img.component) + " channels, " + std::to_string(img.bits) + " bits)");
+        const std::size_t need = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) *
+                                 static_cast<std::size_t>(img.component) * static_cast<std::size_t>(img.bits / 8);
+        if (img.image.size() < need)
+            fail(img_name + ": " + std::to_string(img.image.size()) + " bytes of pixels, " + std::to_string(need) + " needed");
+
+        Texture t;
+        t.name = m_name + " " + img_name;
+        t.width = img.width;
+        t.height = img.height;
+        t.srgb = srgb;
+        t.texels = pack_rgba8(img.image.data(), img.width, img.height, img.component, img.bits);
+        if (tex.sampler >= 0) {
+            if (static_cast<std::size_t>(tex.sampler) >= m_model.samplers.size())
+                fail("texture " + std::to_string(index) + ": sampler " + std::to_string(tex.sampler) + " out of range");
+            const tinygltf::Sampler& s = m_model.samplers[static_cast<std::size_t>(tex.sampler)];
+            t.wrap_s = wrap(s.wrapS);
+            t.wrap_t = wrap(s.wrapT);
+            t.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        m_scene.textures.push_back(std::move(t));
+        const int out = static_cast<int>(m_scene.textures.size() - 1);
+        m_textures.emplace(key, out);
+        return out;
+    }
+
+    std::uint32_t default_material()
+    {
+        if (!m_default) {
+            m_default = static_cast<std::uint32_t>(m_scene.materials.size());
+            m_scene.materials.push_back(Material{});
+        }
+        return *m_default;
+    }
+
+    const tinygltf::Model& m_model;
+    const std::string& m_name;
+    Scene& m_scene;
+    std::optional<std::uint32_t> m_default;
+    std::map<std::pair<int, bool>, int> m_textures;
+    std::set<int> m_warned_modes;
+    std::set<int> m_warned_texcoord;
+};
+
+// tinygltf's messages can quote bytes of a garbage file ("last read: '...'"): keep valid
+// UTF-8 and printable ASCII, show anything else as \xNN, and drop trailing newlines.
+std::string printable(const std::string& s)
+{
+    static const char* hex = "0123456789abcdef";
+    std::string out;
+    for (std::size_t i = 0; i < s.size();) {
+        const unsigned char c = static_cast<unsigned char>(s[i]);
+        std::size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+        bool ok = len > 0 && i + len <= s.size() && (len > 1 || c >= 0x20 || c == '\n') && c != 0x7f;
+        for (std::size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) >> 6) == 0x2;
+        if (ok) {
+            out.append(s, i, len);
+            i += len;
+        } else {
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 0xf];
+            ++i;
+        }
+    }
+    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+    return out;
+}
+
+void forward_warnings(const std::string& warn, const std::string& name)
+{
+    std::istringstream lines(warn);
+    std::string line;
+    while (std::getline(lines, line))
+        if (!line.empty()) log_warning(name + ": " + printable(line));
+}
+
+}  // namespace
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
+{
+    const std::string name = path.string();
+    const std::vector<unsigned char> bytes = read_binary_file(path);
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(name + ": larger than 4 GiB");
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext == ".glb" || binary) check_glb_container(bytes.data(), bytes.size(), name);
+    if (bytes.empty()) throw InputError(name + ": empty file");
+
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string err, warn;
+    const std::string base_dir = path.parent_path().empty() ? std::string(".") : path.parent_path().string();
+    const unsigned int size = static_cast<unsigned int>(bytes.size());
+    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+                           : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                        size, base_dir);
+    if (!ok || !err.empty()) {
+        std::string why = printable(err);
+        if (why.empty()) why = printable(warn);
+        throw InputError(name + ": cannot load glTF: " + (why.empty() ? std::string("tinygltf gave no reason") : why));
+    }
+    forward_warnings(warn, name);
+
+    int scene_index = -1;
+    if (!model.scenes.empty()) {
+        scene_index = options.gltf_scene >= 0 ? options.gltf_scene : (model.defaultScene >= 0 ? model.defaultScene : 0);
+        if (static_cast<std::size_t>(scene_index) >= model.scenes.size())
+            throw InputError(name + ": scene " + std::to_string(scene_index) + " requested, but the file has " +
+                             std::to_string(model.scenes.size()) + " scene(s)");
+    } else if (options.gltf_scene > 0) {
+        throw InputError(name + ": scene " + std::to_string(options.gltf_scene) + " requested, but the file defines no scenes");
+    }
+
+    Scene scene;
+    scene.source_path = name;
+    GltfConverter converter(model, name, scene);
+    converter.convert_materials();
+    converter.convert_scene(scene_index);
+    if (scene.triangle_count() == 0) throw InputError(name + ": no triangles");
+    if (scene.materials.empty()) scene.materials.push_back(Material{});
+    return scene;
+}
+
+}  // namespace gc

@@ -1,0 +1,23 @@
+#include "host/scene/load.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "host/scene/gltf_loader.h"
+#include "host/scene/obj_loader.h"
+#include "host/util/error.h"
+
+namespace gc {
+
+Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
+{
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".obj") return load_obj(path, options);
+    if (ext == ".gltf" || ext == ".glb") return load_gltf(path, options);
+    throw InputError(path.string() + ": unsupported scene format '" + (ext.empty() ? std::string("(none)") : ext) +
+                     "' (supported: .obj, .gltf, .glb)");
+}
+
+}  // namespace gc

@@ -1,0 +1,16 @@
+// Entry point of the scene module: a file in, a Scene out.
+#pragma once
+
+#include <filesystem>
+
+#include "host/scene/load_options.h"
+#include "host/scene/scene.h"
+
+namespace gc {
+
+// Loads .obj (with its .mtl files and textures), .gltf or .glb, chosen by the extension
+// (case-insensitive). Throws InputError naming the file for anything unreadable or malformed;
+// a file with another extension is an InputError listing the supported ones.
+Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
+
+}  // namespace gc

@@ -1,0 +1,66 @@
+// Appends triangles to a Scene's flat arrays, keeping its invariants: three positions and
+// normals per triangle, one material id and has_vertex_normals flag, and uvs either empty or
+// three per triangle. Both loaders go through it.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "host/scene/scene.h"
+
+namespace gc {
+
+struct SinkCorner {
+    Point3 position;
+    Normal3 normal;        // read only when the triangle has vertex normals
+    glm::vec2 uv{0.0f};    // read only when the triangle has uvs
+};
+
+// The geometric normal of a counter-clockwise triangle; +Z for a zero-area one, so that
+// degenerate triangles (kept: files have them) never put a NaN into the scene.
+inline Normal3 face_normal(const Point3& p0, const Point3& p1, const Point3& p2)
+{
+    const Vec3 c = cross(p1 - p0, p2 - p0);
+    const float len = length(c);
+    if (!(len > 0.0f) || !std::isfinite(len)) return Normal3(0.0f, 0.0f, 1.0f);
+    return Normal3(c / len);
+}
+
+class TriangleSink {
+public:
+    TriangleSink(Scene& scene, std::size_t expected_triangles) : m_scene(scene)
+    {
+        m_scene.positions.reserve(m_scene.positions.size() + 3 * expected_triangles);
+        m_scene.normals.reserve(m_scene.normals.size() + 3 * expected_triangles);
+        m_scene.material_ids.reserve(m_scene.material_ids.size() + expected_triangles);
+        m_scene.has_vertex_normals.reserve(m_scene.has_vertex_normals.size() + expected_triangles);
+    }
+
+    // with_normals: use c[i].normal, normalized; a zero or non-finite one falls back to the face
+    // normal at that corner. with_uv: store c[i].uv (the first such triangle back-fills zeros
+    // for the triangles before it, so uvs stays three per triangle).
+    void add(const SinkCorner c[3], bool with_normals, bool with_uv, std::uint32_t material)
+    {
+        const Normal3 n_face = face_normal(c[0].position, c[1].position, c[2].position);
+        for (int j = 0; j < 3; ++j) {
+            m_scene.positions.push_back(c[j].position);
+            Normal3 n = n_face;
+            if (with_normals) {
+                const float len = length(c[j].normal);
+                if (len > 0.0f && std::isfinite(len)) n = c[j].normal / len;
+            }
+            m_scene.normals.push_back(n);
+        }
+        if (with_uv && m_scene.uvs.size() < 3 * m_scene.material_ids.size())
+            m_scene.uvs.resize(3 * m_scene.material_ids.size(), glm::vec2(0.0f));
+        if (with_uv || !m_scene.uvs.empty())
+            for (int j = 0; j < 3; ++j) m_scene.uvs.push_back(with_uv ? c[j].uv : glm::vec2(0.0f));
+        m_scene.material_ids.push_back(material);
+        m_scene.has_vertex_normals.push_back(with_normals ? 1 : 0);
+    }
+
+private:
+    Scene& m_scene;
+};
+
+}  // namespace gc

@@ -1,0 +1,414 @@
+// glTF loading: the shared sample scenes, and small synthetic .gltf/.glb files that exercise
+// transforms, materials, cameras, lights and every validation path.
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "host/scene/load.h"
+#include "host/scene/triangle_sink.h"
+#include "scene_test_util.h"
+
+namespace gc {
+namespace {
+
+using test::expect_input_error;
+using test::ScratchDir;
+
+// One triangle (0,0,0), (1,0,0), (0,1,0), counter-clockwise seen from +Z, normals +Z,
+// u16 indices 0 1 2: positions at byte 0, normals at 36, indices at 72, padded to 80.
+std::vector<unsigned char> triangle_bin(std::uint16_t i0 = 0, std::uint16_t i1 = 1, std::uint16_t i2 = 2)
+{
+    const float data[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const std::uint16_t idx[4] = {i0, i1, i2, 0};
+    std::vector<unsigned char> bin(80);
+    std::memcpy(bin.data(), data, 72);
+    std::memcpy(bin.data() + 72, idx, 8);
+    return bin;
+}
+
+// The parts of a one-triangle glTF document a test may replace.
+struct Doc {
+    std::string buffer_uri = "\"uri\": \"tri.bin\", ";
+    std::string buffer_length = "80";
+    std::string position_accessor = R"({"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"})";
+    std::string primitive_extra = R"(, "indices": 2)";
+    std::string attributes = R"("POSITION": 0, "NORMAL": 1)";
+    std::string extra_primitives;
+    std::string nodes = R"([{"mesh": 0}])";
+    std::string scenes = R"([{"nodes": [0]}])";
+    std::string top = "";  // extra top-level members, each followed by a comma
+
+    std::string json() const
+    {
+        return "{" + top + R"("asset": {"version": "2.0"}, "scene": 0, "scenes": )" + scenes + R"(, "nodes": )" + nodes +
+               R"(, "meshes": [{"primitives": [{"attributes": {)" + attributes + "}" + primitive_extra + "}" +
+               extra_primitives + R"(]}], "accessors": [)" + position_accessor +
+               R"(, {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"},
+                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+               "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                               {"buffer": 0, "byteOffset": 72, "byteLength": 6}],
+               "buffers": [{)" + buffer_uri + R"("byteLength": )" + buffer_length + "}]}";
+    }
+};
+
+std::filesystem::path write_gltf(const ScratchDir& dir, const Doc& doc, const std::vector<unsigned char>& bin = triangle_bin())
+{
+    dir.write("tri.bin", bin);
+    return dir.write("tri.gltf", doc.json());
+}
+
+void put_u32(std::vector<unsigned char>& out, std::uint32_t v)
+{
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i)));
+}
+
+// A .glb with the document's JSON (buffer without uri) and the bin as its BIN chunk.
+std::vector<unsigned char> make_glb(Doc doc, std::vector<unsigned char> bin = triangle_bin())
+{
+    doc.buffer_uri = "";
+    std::string json = doc.json();
+    while (json.size() % 4) json.push_back(' ');
+    while (bin.size() % 4) bin.push_back(0);
+    std::vector<unsigned char> out;
+    put_u32(out, 0x46546C67);
+    put_u32(out, 2);
+    put_u32(out, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size()));
+    put_u32(out, static_cast<std::uint32_t>(json.size()));
+    put_u32(out, 0x4E4F534A);
+    out.insert(out.end(), json.begin(), json.end());
+    put_u32(out, static_cast<std::uint32_t>(bin.size()));
+    put_u32(out, 0x004E4942);
+    out.insert(out.end(), bin.begin(), bin.end());
+    return out;
+}
+
+// Every triangle's winding agrees with its shading normals: front faces stay front.
+void expect_front_faces_consistent(const Scene& s)
+{
+    for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+        const Normal3 n = face_normal(s.vertex(t, 0), s.vertex(t, 1), s.vertex(t, 2));
+        for (int j = 0; j < 3; ++j) EXPECT_GT(dot(n, s.normals[3 * t + static_cast<std::size_t>(j)]), 0.0f) << t;
+    }
+}
+
+struct Timed {
+    Scene scene;
+    double ms;
+};
+Timed timed_load(const std::filesystem::path& p)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    Scene s = load_scene(p);
+    return {std::move(s), std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()};
+}
+
+void expect_invariants(const Scene& s)
+{
+    const std::size_t n = s.triangle_count();
+    ASSERT_EQ(s.positions.size(), 3 * n);
+    ASSERT_EQ(s.normals.size(), 3 * n);
+    ASSERT_TRUE(s.uvs.empty() || s.uvs.size() == 3 * n);
+    for (std::uint32_t id : s.material_ids) ASSERT_LT(id, s.materials.size());
+    for (const Normal3& nn : s.normals) ASSERT_NEAR(length(nn), 1.0f, 1e-4f);
+    for (const Material& m : s.materials) {
+        for (int slot : {m.albedo_texture, m.metallic_roughness_texture, m.normal_texture, m.emission_texture})
+            ASSERT_LT(slot, static_cast<int>(s.textures.size()));
+    }
+}
+
+// --- shared sample scenes
+
+TEST(GltfShared, BoxTextured)
+{
+    const auto path = test::shared_scene("box-textured/BoxTextured.gltf");
+    GC_SKIP_IF_MISSING(path);
+    const Timed t = timed_load(path);
+    const Scene& s = t.scene;
+    std::printf("  box-textured: %zu triangles, %zu textures in %.1f ms\n", s.triangle_count(), s.textures.size(), t.ms);
+    expect_invariants(s);
+    EXPECT_EQ(s.triangle_count(), 12u);
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_TRUE(s.textures[0].srgb);
+    EXPECT_GT(s.textures[0].width, 0);
+    ASSERT_FALSE(s.materials.empty());
+    EXPECT_EQ(s.materials[0].type, MaterialType::Pbr);
+    EXPECT_EQ(s.materials[0].albedo_texture, 0);
+    EXPECT_EQ(s.uvs.size(), 36u);
+    expect_front_faces_consistent(s);
+}
+
+TEST(GltfShared, DamagedHelmet)
+{
+    const auto path = test::shared_scene("damaged-helmet/DamagedHelmet.glb");
+    GC_SKIP_IF_MISSING(path);
+    const Timed t = timed_load(path);
+    const Scene& s = t.scene;
+    std::printf("  damaged-helmet: %zu triangles, %zu textures in %.1f ms\n", s.triangle_count(), s.textures.size(), t.ms);
+    expect_invariants(s);
+    EXPECT_EQ(s.triangle_count(), 15452u);
+    ASSERT_EQ(s.materials.size(), 1u);
+    const Material& m = s.materials[0];
+    EXPECT_GE(m.albedo_texture, 0);
+    EXPECT_GE(m.metallic_roughness_texture, 0);
+    EXPECT_GE(m.normal_texture, 0);
+    EXPECT_GE(m.emission_texture, 0);
+    EXPECT_TRUE(s.textures[static_cast<std::size_t>(m.albedo_texture)].srgb);
+    EXPECT_FALSE(s.textures[static_cast<std::size_t>(m.normal_texture)].srgb);
+    EXPECT_TRUE(m.is_emissive());
+}
+
+TEST(GltfShared, Avocado)
+{
+    const auto path = test::shared_scene("avocado/Avocado.gltf");
+    GC_SKIP_IF_MISSING(path);
+    const Timed t = timed_load(path);
+    std::printf("  avocado: %zu triangles in %.1f ms\n", t.scene.triangle_count(), t.ms);
+    expect_invariants(t.scene);
+    EXPECT_EQ(t.scene.triangle_count(), 682u);
+    EXPECT_EQ(t.scene.textures.size(), 3u);
+}
+
+TEST(GltfShared, RetroUfoHierarchy)
+{
+    const auto path = test::shared_scene("retro-ufo/retroufo.glb");
+    GC_SKIP_IF_MISSING(path);
+    const Timed t = timed_load(path);
+    std::printf("  retro-ufo: %zu triangles in %.1f ms\n", t.scene.triangle_count(), t.ms);
+    expect_invariants(t.scene);
+    EXPECT_EQ(t.scene.triangle_count(), 16428u);
+}
+
+TEST(GltfShared, TruncatedHelmetIsAnError)
+{
+    const auto path = test::shared_scene("damaged-helmet/DamagedHelmet.glb");
+    GC_SKIP_IF_MISSING(path);
+    const std::vector<unsigned char> bytes = test::read_bytes(path);
+    ScratchDir dir;
+    for (std::size_t n : {std::size_t(0), std::size_t(11), std::size_t(20), std::size_t(1000), bytes.size() / 2,
+                          bytes.size() - 1}) {
+        const auto p = dir.write("cut.glb", std::vector<unsigned char>(bytes.begin(), bytes.begin() + static_cast<long>(n)));
+        expect_input_error([&] { load_scene(p); }, {"cut.glb"});
+    }
+}
+
+// --- synthetic files
+
+TEST(GltfSynthetic, IndexedTriangleGltfAndGlb)
+{
+    ScratchDir dir;
+    const Scene a = load_scene(write_gltf(dir, Doc{}));
+    const Scene b = load_scene(dir.write("tri.glb", make_glb(Doc{})));
+    for (const Scene* s : {&a, &b}) {
+        expect_invariants(*s);
+        ASSERT_EQ(s->triangle_count(), 1u);
+        EXPECT_EQ(s->vertex(0, 1), Point3(1, 0, 0));
+        EXPECT_EQ(s->has_vertex_normals[0], 1);
+        EXPECT_EQ(s->normals[0], Normal3(0, 0, 1));
+        ASSERT_EQ(s->materials.size(), 1u);
+        EXPECT_EQ(s->materials[0].name, "default");
+        EXPECT_TRUE(s->uvs.empty());
+    }
+}
+
+TEST(GltfSynthetic, NonIndexedAndSkippedModes)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.primitive_extra = "";
+    doc.extra_primitives = R"(, {"attributes": {"POSITION": 0}, "mode": 1})";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc));
+    const std::string err = testing::internal::GetCapturedStderr();
+    std::printf("  stderr: %s", err.c_str());
+    EXPECT_EQ(s.triangle_count(), 1u);
+    EXPECT_NE(err.find("mode 1"), std::string::npos);
+}
+
+TEST(GltfSynthetic, HierarchyComposesTransforms)
+{
+    ScratchDir dir;
+    Doc doc;
+    // Parent translates by +10 x; child rotates 90 degrees about Z and scales by 2.
+    doc.nodes = R"([{"translation": [10, 0, 0], "children": [1]},
+                    {"mesh": 0, "rotation": [0, 0, 0.70710678, 0.70710678], "scale": [2, 2, 2]}])";
+    const Scene s = load_scene(write_gltf(dir, doc));
+    ASSERT_EQ(s.triangle_count(), 1u);
+    const Point3 p1 = s.vertex(0, 1);  // (1,0,0) -> scale (2,0,0) -> rotate (0,2,0) -> (10,2,0)
+    std::printf("  (1,0,0) -> (%.4f, %.4f, %.4f)\n", p1.x, p1.y, p1.z);
+    EXPECT_NEAR(p1.x, 10.0f, 1e-5f);
+    EXPECT_NEAR(p1.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(p1.z, 0.0f, 1e-5f);
+    EXPECT_NEAR(s.normals[0].z, 1.0f, 1e-5f);
+
+    // The same through a column-major matrix.
+    doc.nodes = R"([{"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 3,4,5,1], "mesh": 0}])";
+    const Scene m = load_scene(write_gltf(dir, doc));
+    EXPECT_EQ(m.vertex(0, 1), Point3(4, 4, 5));
+}
+
+TEST(GltfSynthetic, MirroringTransformKeepsFrontFaces)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.nodes = R"([{"mesh": 0, "scale": [-1, 1, 1]}])";
+    const Scene s = load_scene(write_gltf(dir, doc));
+    ASSERT_EQ(s.triangle_count(), 1u);
+    const Normal3 n = face_normal(s.vertex(0, 0), s.vertex(0, 1), s.vertex(0, 2));
+    std::printf("  winding normal after scale(-1,1,1): (%.1f, %.1f, %.1f)\n", n.x, n.y, n.z);
+    EXPECT_EQ(n, Normal3(0, 0, 1));
+    expect_front_faces_consistent(s);
+
+    // Without NORMAL the face normal must still face +Z (the original front side).
+    doc.attributes = R"("POSITION": 0)";
+    const Scene f = load_scene(write_gltf(dir, doc));
+    EXPECT_EQ(f.has_vertex_normals[0], 0);
+    EXPECT_EQ(f.normals[0], Normal3(0, 0, 1));
+}
+
+TEST(GltfSynthetic, MaterialFactorsAndExtensions)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+    doc.top = R"("materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1, 0.5],
+        "metallicFactor": 0.3, "roughnessFactor": 0.7}, "emissiveFactor": [1, 1, 0],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 5}, "KHR_materials_ior": {"ior": 1.33},
+                       "KHR_materials_transmission": {"transmissionFactor": 0.9}},
+        "doubleSided": true, "alphaMode": "MASK", "alphaCutoff": 0.25}],
+        "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission"],)";
+    const Scene s = load_scene(write_gltf(dir, doc));
+    ASSERT_EQ(s.materials.size(), 1u);
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.type, MaterialType::Pbr);
+    EXPECT_EQ(m.albedo, glm::vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(m.opacity, 0.5f);
+    EXPECT_NEAR(m.metallic, 0.3f, 1e-6f);
+    EXPECT_NEAR(m.roughness, 0.7f, 1e-6f);
+    EXPECT_EQ(m.emission, glm::vec3(5, 5, 0));
+    EXPECT_NEAR(m.ior, 1.33f, 1e-6f);
+    EXPECT_NEAR(m.transmission, 0.9f, 1e-6f);
+    EXPECT_TRUE(m.double_sided);
+    EXPECT_EQ(m.alpha_mode, AlphaMode::Mask);
+    EXPECT_EQ(m.alpha_cutoff, 0.25f);
+}
+
+TEST(GltfSynthetic, CameraAndPointLights)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.nodes = R"([{"mesh": 0}, {"camera": 0, "translation": [0, 0, 5]},
+                    {"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+                    {"extensions": {"KHR_lights_punctual": {"light": 1}}}])";
+    doc.scenes = R"([{"nodes": [0, 1, 2, 3]}])";
+    doc.top = R"("cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "znear": 0.1}}],
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0.5, 0.25], "intensity": 4},
+                                                           {"type": "spot", "spot": {}}]}},)";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc));
+    const std::string err = testing::internal::GetCapturedStderr();
+    ASSERT_TRUE(s.camera.has_value());
+    EXPECT_EQ(s.camera->look_from, Point3(0, 0, 5));
+    EXPECT_EQ(s.camera->look_at, Point3(0, 0, 4));
+    EXPECT_EQ(s.camera->up, Vec3(0, 1, 0));
+    EXPECT_NEAR(s.camera->vfov_degrees, 0.6f * 180.0f / 3.14159265f, 1e-4f);
+    ASSERT_EQ(s.point_lights.size(), 1u);
+    EXPECT_EQ(s.point_lights[0].position, Point3(1, 2, 3));
+    EXPECT_EQ(s.point_lights[0].intensity, glm::vec3(4, 2, 1));
+    EXPECT_NE(err.find("spot"), std::string::npos) << err;
+}
+
+TEST(GltfSynthetic, SceneSelection)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.nodes = R"([{"mesh": 0}, {"mesh": 0, "translation": [0, 0, 7]}])";
+    doc.scenes = R"([{"nodes": [0]}, {"nodes": [1]}])";
+    const auto p = write_gltf(dir, doc);
+    EXPECT_EQ(load_scene(p).vertex(0, 0).z, 0.0f);  // "scene": 0 is the default
+    LoadOptions second;
+    second.gltf_scene = 1;
+    EXPECT_EQ(load_scene(p, second).vertex(0, 0).z, 7.0f);
+    LoadOptions bad;
+    bad.gltf_scene = 5;
+    expect_input_error([&] { load_scene(p, bad); }, {"tri.gltf", "scene 5", "2 scene"});
+}
+
+TEST(GltfErrors, AccessorPastItsBuffer)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.position_accessor = R"({"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 30, "type": "VEC3"})";
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "accessor 0"});
+    // The buffer file shorter than the bufferViews need.
+    Doc shortbuf;
+    expect_input_error([&] { load_scene(write_gltf(dir, shortbuf, std::vector<unsigned char>(40))); }, {"tri.gltf"});
+    // Wrong component type for positions.
+    Doc ints;
+    ints.position_accessor = R"({"bufferView": 0, "componentType": 5125, "count": 3, "type": "VEC3"})";
+    expect_input_error([&] { load_scene(write_gltf(dir, ints)); }, {"accessor 0", "UNSIGNED_INT", "VEC3 FLOAT"});
+}
+
+TEST(GltfErrors, IndexOutOfRangeAndNonFinite)
+{
+    ScratchDir dir;
+    expect_input_error([&] { load_scene(write_gltf(dir, Doc{}, triangle_bin(0, 1, 5))); },
+                       {"tri.gltf", "mesh 0", "accessor 2", "index 5", "3 vertices"});
+    std::vector<unsigned char> bin = triangle_bin();
+    const float nan = std::nanf("");
+    std::memcpy(bin.data() + 16, &nan, 4);  // vertex 1, y
+    expect_input_error([&] { load_scene(write_gltf(dir, Doc{}, bin)); }, {"accessor 0", "position 1", "not finite"});
+}
+
+TEST(GltfErrors, NodeCycle)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.nodes = R"([{"mesh": 0, "children": [1]}, {"children": [0]}])";
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "node"});
+}
+
+TEST(GltfErrors, TruncatedGlbEveryLength)
+{
+    ScratchDir dir;
+    const std::vector<unsigned char> glb = make_glb(Doc{});
+    ASSERT_NO_THROW(load_scene(dir.write("whole.glb", glb)));
+    int errors = 0;
+    for (std::size_t n = 0; n < glb.size(); ++n) {
+        const auto p = dir.write("cut.glb", std::vector<unsigned char>(glb.begin(), glb.begin() + static_cast<long>(n)));
+        try {
+            load_scene(p);
+        } catch (const InputError& e) {
+            ++errors;
+            EXPECT_NE(std::string(e.what()).find("cut.glb"), std::string::npos);
+        }
+    }
+    std::printf("  %d of %zu truncations rejected with InputError\n", errors, glb.size());
+    EXPECT_EQ(static_cast<std::size_t>(errors), glb.size());
+
+    // A header that claims more than the BIN chunk can hold: tinygltf 2.7 would read past the end.
+    std::vector<unsigned char> lying = glb;
+    const std::size_t bin_header = lying.size() - 80 - 8;
+    lying[bin_header] = 84;  // BIN chunk length 84 > the 80 bytes present
+    expect_input_error([&] { load_scene(dir.write("lying.glb", lying)); }, {"lying.glb", "chunk 1"});
+}
+
+TEST(GltfErrors, GarbageFiles)
+{
+    ScratchDir dir;
+    std::vector<unsigned char> bytes(2048);
+    unsigned state = 777;
+    for (unsigned char& b : bytes) b = static_cast<unsigned char>((state = state * 1103515245u + 12345u) >> 16);
+    expect_input_error([&] { load_scene(dir.write("garbage.glb", bytes)); }, {"garbage.glb"});
+    const std::string msg = expect_input_error([&] { load_scene(dir.write("garbage.gltf", bytes)); }, {"garbage.gltf"});
+    for (char ch : msg) EXPECT_TRUE(ch >= 0x20 && ch < 0x7f) << "unprintable byte in the message";
+    expect_input_error([&] { load_scene(dir.write("text.gltf", "{\"asset\": ")); }, {"text.gltf"});
+    expect_input_error([&] { load_scene(dir.write("empty.gltf", "")); }, {"empty.gltf"});
+    expect_input_error([&] { load_scene(dir.write("nomesh.gltf", R"({"asset": {"version": "2.0"}})")); },
+                       {"nomesh.gltf", "no triangles"});
+}
+
+}  // namespace
+}  // namespace gc
