@@ -95,8 +95,10 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
 
     m_film = cl::Buffer<glm::vec4>::create(context, pixels, CL_MEM_READ_WRITE, "film");
     const glm::vec4 zero(0.0f);
-    GC_CL_WHAT("clearing the film", clEnqueueFillBuffer, context.queue(), m_film.mem(), &zero, sizeof zero, 0,
-               m_film.bytes(), 0, nullptr, nullptr);
+    m_film_squares = cl::Buffer<glm::vec4>::create(context, pixels, CL_MEM_READ_WRITE, "film squares");
+    for (const cl::Buffer<glm::vec4>* film : {&m_film, &m_film_squares})
+        GC_CL_WHAT("clearing the film", clEnqueueFillBuffer, context.queue(), film->mem(), &zero, sizeof zero, 0,
+                   film->bytes(), 0, nullptr, nullptr);
 
     if (settings.integrator == IntegratorKind::Aov) {
         m_aov = m_program.kernel("aov_render");
@@ -176,7 +178,7 @@ void Renderer::run_path_batch()
         m_shadow.launch(m_context, n, 0, "shadow rays");
         a_is_input = !a_is_input;
     }
-    m_accumulate.set_args(m_params, m_paths, m_film);
+    m_accumulate.set_args(m_params, m_paths, m_film, m_film_squares);
     m_accumulate.launch(m_context, n, 0, "film accumulation");
 }
 
@@ -191,6 +193,28 @@ Film Renderer::film() const
         const std::uint32_t x = static_cast<std::uint32_t>(i % m_params.width);
         const std::uint32_t y = static_cast<std::uint32_t>(i / m_params.width);
         film.set(x, y, Rgba{sums[i].x * inv, sums[i].y * inv, sums[i].z * inv, 1.0f});
+    }
+    return film;
+}
+
+Film Renderer::variance() const
+{
+    const std::size_t pixels = m_film.count();
+    std::vector<glm::vec4> sums(pixels), squares(pixels);
+    m_film.read(sums);
+    m_film_squares.read(squares);
+    Film film(m_params.width, m_params.height);
+    const double n = m_samples;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        float v[3] = {0, 0, 0};
+        if (n > 1) {
+            for (int c = 0; c < 3; ++c) {
+                const double mean = sums[i][c] / n;
+                v[c] = static_cast<float>(std::max(0.0, (squares[i][c] / n - mean * mean) * n / (n - 1)));
+            }
+        }
+        film.set(static_cast<std::uint32_t>(i % m_params.width), static_cast<std::uint32_t>(i / m_params.width),
+                 Rgba{v[0], v[1], v[2], 1.0f});
     }
     return film;
 }

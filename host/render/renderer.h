@@ -36,6 +36,9 @@ public:
 
     // The mean of the samples so far, linear RGB, alpha 1.
     Film film() const;
+    // Per-pixel sample variance of the samples so far (unbiased, n - 1 in the denominator):
+    // what a Z-test against a reference needs. Path integrator only; zero elsewhere.
+    Film variance() const;
 
 private:
     void run_aov_batch();
@@ -51,6 +54,7 @@ private:
     std::uint32_t m_samples = 0;
 
     cl::Buffer<glm::vec4> m_film;
+    cl::Buffer<glm::vec4> m_film_squares;
     // Path integrator state (empty for the aov integrator).
     cl::Buffer<dev::GcRay> m_rays;
     cl::Buffer<dev::GcHit> m_hits;
