@@ -10,10 +10,15 @@ namespace gc {
 namespace {
 
 constexpr float k_default_fov_degrees = 40.0f;
-constexpr float k_margin = 1.1f;
+// The box's projection may use 1 / k_margin of the half-field: a thin border of background.
+constexpr float k_margin = 1.05f;
 
 }  // namespace
 
+// Looks down -Z at the centre of the bounds, from the nearest distance at which every corner
+// of the bounding box projects inside the view. Fitting the corners rather than the bounding
+// sphere frames boxy scenes (a Cornell box, a room) the way a person would: the open side
+// fills the image instead of floating in a black border.
 Camera frame_camera(const Scene& scene)
 {
     Camera camera;
@@ -21,11 +26,13 @@ Camera frame_camera(const Scene& scene)
     const Bounds3 b = scene.bounds();
     if (b.empty()) return camera;
     const Point3 center = b.centroid();
-    float radius = 0.5f * length(b.diagonal());
-    if (!(radius > 0.0f)) radius = 1.0f;  // a single point: any distance shows it
-    // A sphere of radius r seen from distance d fills the half-angle asin(r/d).
-    const float half = 0.5f * k_default_fov_degrees * 3.14159265f / 180.0f;
-    const float dist = k_margin * radius / std::sin(half);
+    const Vec3 half_extent = 0.5f * b.diagonal();
+    const float tan_half = std::tan(0.5f * k_default_fov_degrees * 3.14159265f / 180.0f);
+    // Corner (dx, dy, dz) relative to the centre, camera at distance d on +Z: it is inside the
+    // (square, or wider) view when max(|dx|, |dy|) <= tan_half * (d - dz) / k_margin.
+    const float lateral = std::fmax(half_extent.x, half_extent.y);
+    float dist = half_extent.z + k_margin * lateral / tan_half;
+    if (!(dist > half_extent.z) || !std::isfinite(dist)) dist = half_extent.z + 1.0f;  // a point or a sliver
     camera.look_at = center;
     camera.look_from = center + Vec3(0.0f, 0.0f, dist);
     camera.up = Vec3(0.0f, 1.0f, 0.0f);

@@ -16,9 +16,9 @@ struct CameraOverrides {
 };
 
 // Looks at the centre of the scene's bounds from +Z (down -Z, +Y up) with a 40-degree
-// vertical field of view, far enough that the bounding sphere fits in the view with a 10%
-// margin. The sphere fits the vertical angle; for images at least as wide as they are tall
-// it then fits horizontally too. An empty scene gives the default Camera.
+// vertical field of view, from the nearest distance at which every corner of the bounding
+// box projects inside the view with a 5% margin (for images at least as wide as they are
+// tall). An empty scene gives the default Camera.
 Camera frame_camera(const Scene& scene);
 
 // The file's camera (or frame_camera's) with the overrides applied. Throws UsageError when the
