@@ -167,12 +167,4 @@ dev::GcCamera make_camera(const Camera& camera, int width, int height)
     return d;
 }
 
-dev::GcRay to_device(const Ray& ray)
-{
-    dev::GcRay r{};
-    r.org_tmin = v4(ray.origin, ray.tmin);
-    r.dir_tmax = {ray.direction.x, ray.direction.y, ray.direction.z, ray.tmax};
-    return r;
-}
-
 }  // namespace gc

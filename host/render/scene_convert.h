@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "gc_types.h"
-#include "host/math/ray.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -28,7 +27,5 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene);
 
 // Pinhole camera for a width x height image (square pixels, vertical field of view).
 dev::GcCamera make_camera(const Camera& camera, int width, int height);
-
-dev::GcRay to_device(const Ray& ray);
 
 }  // namespace gc

@@ -17,7 +17,7 @@
 #ifndef GC_PLATFORM_H
 #define GC_PLATFORM_H
 
-#if defined(__OPENCL_VERSION__)
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 /* ---------------------------------------------------------------- OpenCL C */
 #define GC_OPENCL 1
 /* Cross-device rule: no fused multiply-add unless the source says fma(). Contraction is on

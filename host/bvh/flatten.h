@@ -1,0 +1,34 @@
+// The device layout of a BVH: GcBvhNode[] and GcTriangle[] exactly as the kernels read them
+// (kernels/shared/gc_types.h, traversed by kernels/shared/gc_traverse.h).
+#pragma once
+
+#include <vector>
+
+#include "gc_types.h"
+#include "host/bvh/builder.h"
+#include "host/scene/scene.h"
+
+namespace gc {
+
+// Nodes in depth-first order with sibling pairs adjacent: node 0 is the root, an inner
+// node's children are nodes[first] and nodes[first + 1], and a left child's whole subtree
+// comes before its right sibling's children. Triangles are in leaf order (each leaf's
+// triangles contiguous, leaves in the same depth-first order), with the scene triangle
+// index in v0.w.
+//
+// The empty scene flattens to one leaf with empty bounds (lo = +inf, hi = -inf, first = 0,
+// count = 1) over one zero-area dummy triangle at the origin whose scene index is
+// GC_INVALID: both buffers are non-empty (OpenCL has no zero-sized buffers) and every ray
+// misses (see gc_traverse.h).
+struct FlatBvh {
+    std::vector<dev::GcBvhNode> nodes;
+    std::vector<dev::GcTriangle> triangles;
+    double build_seconds = 0.0; // wall time of build_bvh (tree + flatten); 0 if not timed
+
+    // Triangles of the scene (0 for the empty scene's dummy).
+    std::size_t scene_triangle_count() const;
+};
+
+FlatBvh flatten(const BvhTree& tree, const Scene& scene);
+
+}  // namespace gc

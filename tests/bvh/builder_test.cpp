@@ -1,0 +1,121 @@
+// Builder properties: determinism across thread counts, option and input validation, and
+// the figures for a large scene (printed, not asserted) and the Stanford dragon.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "bvh_checks.h"
+#include "host/scene/load.h"
+#include "host/util/error.h"
+#include "test_scenes.h"
+
+namespace gc::test {
+namespace {
+
+bool same_bytes(const FlatBvh& a, const FlatBvh& b)
+{
+    return a.nodes.size() == b.nodes.size() && a.triangles.size() == b.triangles.size() &&
+           std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(dev::GcBvhNode)) == 0 &&
+           std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(dev::GcTriangle)) == 0;
+}
+
+TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
+{
+    // Large enough that the builder really spawns threads (subtrees >= 8192 triangles).
+    Scene scene = random_soup(150000, 21, 0.02f);
+    // Plus a dense clump, so SAH splits are uneven.
+    const Scene clump = random_soup(30000, 22, 0.002f);
+    for (std::size_t t = 0; t < clump.triangle_count(); ++t)
+        add_triangle(scene, Point3(0.01f * clump.vertex(t, 0).glm()), Point3(0.01f * clump.vertex(t, 1).glm()),
+                     Point3(0.01f * clump.vertex(t, 2).glm()));
+    const FlatBvh one = build_bvh(scene, {.threads = 1});
+    const FlatBvh four = build_bvh(scene, {.threads = 4});
+    const FlatBvh all = build_bvh(scene, {.threads = 0});
+    std::printf("[ determinism ] %zu triangles, %zu nodes; 1 thread %.3f s, 4 threads %.3f s\n",
+                scene.triangle_count(), one.nodes.size(), one.build_seconds, four.build_seconds);
+    EXPECT_TRUE(same_bytes(one, four)) << "1 vs 4 threads";
+    EXPECT_TRUE(same_bytes(one, all)) << "1 thread vs hardware_concurrency";
+    check_invariants(four, scene, 4);
+}
+
+TEST(BvhBuilder, RejectsBadOptions)
+{
+    const Scene scene = random_soup(10, 23);
+    EXPECT_THROW(build_bvh(scene, {.bins = 1}), UsageError);
+    EXPECT_THROW(build_bvh(scene, {.bins = 1000}), UsageError);
+    EXPECT_THROW(build_bvh(scene, {.max_leaf_size = 0}), UsageError);
+    EXPECT_THROW(build_bvh(scene, {.max_leaf_size = kBvhMaxLeafCap + 1}), UsageError);
+    EXPECT_THROW(build_bvh(scene, {.intersection_cost = 0.0f}), UsageError);
+    EXPECT_THROW(build_bvh(scene, {.traversal_cost = std::numeric_limits<float>::quiet_NaN()}), UsageError);
+    EXPECT_THROW(build_bvh(scene, {.threads = -1}), UsageError);
+    EXPECT_NO_THROW(build_bvh(scene, {.bins = 2, .max_leaf_size = kBvhMaxLeafCap}));
+}
+
+TEST(BvhBuilder, RejectsNonFiniteVerticesNamingTheTriangle)
+{
+    Scene scene = random_soup(10, 24);
+    scene.source_path = "soup.obj";
+    scene.positions[3 * 7 + 1] = Point3(0.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f);
+    try {
+        build_bvh(scene);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        std::printf("[ message ] %s\n", msg.c_str());
+        EXPECT_NE(msg.find("soup.obj"), std::string::npos);
+        EXPECT_NE(msg.find("triangle 7"), std::string::npos);
+    }
+    Scene bad = random_soup(10, 25);
+    bad.positions.pop_back();
+    EXPECT_THROW(build_bvh(bad), InputError);
+}
+
+TEST(BvhBuilder, LeafSizeOptionIsHonoured)
+{
+    const Scene scene = random_soup(20000, 26);
+    for (int leaf : {1, 2, 8, 16}) {
+        const FlatBvh bvh = build_bvh(scene, {.max_leaf_size = leaf});
+        check_invariants(bvh, scene, leaf);
+        const BvhStats s = bvh_stats(bvh);
+        std::printf("[ leaf <= %2d ] %zu nodes, %zu leaves (%.2f tris/leaf), depth %zu, SAH %.2f\n", leaf, s.nodes,
+                    s.leaves, double(scene.triangle_count()) / double(s.leaves), s.max_depth, double(s.sah_cost));
+        EXPECT_GT(s.sah_cost, 0.0f);
+    }
+}
+
+TEST(BvhBuilder, MillionTriangleFigures)
+{
+    const Scene scene = random_soup(1000000, 27, 0.01f);
+    const FlatBvh bvh = build_bvh(scene);
+    const BvhStats s = bvh_stats(bvh);
+    std::printf("[ 1M random ] %zu triangles: build %.3f s (%.2f Mtris/s), %zu nodes, %zu leaves, depth %zu, "
+                "SAH cost %.3f\n",
+                scene.triangle_count(), s.build_seconds, 1e-6 * double(scene.triangle_count()) / s.build_seconds,
+                s.nodes, s.leaves, s.max_depth, double(s.sah_cost));
+    EXPECT_EQ(bvh.triangles.size(), scene.triangle_count());
+    EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
+    EXPECT_LE(s.max_depth, 63u);
+    EXPECT_GT(s.sah_cost, 1.0f);
+}
+
+TEST(BvhBuilder, StanfordDragon)
+{
+    const std::filesystem::path path = GC_TEST_SHARED_DIR "/scenes/stanford-dragon-100k/dragon.obj";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
+    const Scene scene = load_scene(path);
+    const FlatBvh bvh = build_bvh(scene);
+    const BvhStats s = bvh_stats(bvh);
+    std::printf("[ dragon ] %zu triangles: build %.3f s (%.2f Mtris/s), %zu nodes, %zu leaves, depth %zu, "
+                "SAH cost %.3f\n",
+                scene.triangle_count(), s.build_seconds, 1e-6 * double(scene.triangle_count()) / s.build_seconds,
+                s.nodes, s.leaves, s.max_depth, double(s.sah_cost));
+    check_invariants(bvh, scene, 4);
+    expect_agreement(compare_with_brute_force(bvh, scene, mixed_rays(scene, 1000, 28)), "dragon");
+}
+
+}  // namespace
+}  // namespace gc::test
