@@ -1,0 +1,104 @@
+// The command line: every option parses, every bad value is a UsageError naming the option.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "host/app/options.h"
+#include "host/util/error.h"
+
+namespace gc {
+namespace {
+
+Options parse(std::vector<std::string> args) { return parse_options(args); }
+
+std::string usage_error(std::vector<std::string> args)
+{
+    try {
+        parse_options(args);
+    } catch (const UsageError& e) {
+        EXPECT_EQ(e.code(), ExitCode::Usage);
+        return e.what();
+    }
+    ADD_FAILURE() << "no UsageError";
+    return {};
+}
+
+TEST(Options, Defaults)
+{
+    const Options o = parse({"scene.obj"});
+    EXPECT_EQ(o.scene_path, "scene.obj");
+    EXPECT_EQ(o.device, "any");
+    EXPECT_EQ(o.render.integrator, IntegratorKind::Path);
+    EXPECT_EQ(o.render.width, 512);
+    EXPECT_EQ(o.render.height, 512);
+    EXPECT_EQ(o.render.spp, 64u);
+    EXPECT_EQ(o.render.max_depth, 8u);
+    EXPECT_TRUE(o.output_path.empty());
+}
+
+TEST(Options, EveryOptionParses)
+{
+    const Options o = parse({"--device", "gpu", "-o", "x.exr", "--integrator=whitted", "--spp", "9", "--seed", "3",
+                             "--max-depth", "4", "--rr-depth", "2", "--time-limit", "1.5", "--res", "64x32",
+                             "--env", "1,0.5,0.25", "--look-from", "0,1,4", "--look-at", "0,1,0", "--up", "0,1,0",
+                             "--fov", "45", "--gltf-scene", "2", "--quiet", "scene.glb"});
+    EXPECT_EQ(o.device, "gpu");
+    EXPECT_EQ(o.output_path, "x.exr");
+    EXPECT_EQ(o.render.integrator, IntegratorKind::Whitted);
+    EXPECT_EQ(o.render.spp, 9u);
+    EXPECT_TRUE(o.spp_given);
+    EXPECT_EQ(o.render.seed, 3u);
+    EXPECT_EQ(o.render.max_depth, 4u);
+    EXPECT_EQ(o.render.rr_depth, 2u);
+    EXPECT_DOUBLE_EQ(o.render.time_limit_seconds, 1.5);
+    EXPECT_EQ(o.render.width, 64);
+    EXPECT_EQ(o.render.height, 32);
+    EXPECT_EQ(o.render.env_radiance, glm::vec3(1.0f, 0.5f, 0.25f));
+    ASSERT_TRUE(o.look_from && o.look_at && o.up && o.fov_degrees);
+    EXPECT_EQ(*o.look_from, Point3(0, 1, 4));
+    EXPECT_EQ(*o.fov_degrees, 45.0f);
+    EXPECT_EQ(o.gltf_scene, 2);
+    EXPECT_TRUE(o.quiet);
+    EXPECT_EQ(o.scene_path, "scene.glb");
+}
+
+TEST(Options, AovImpliesTheAovIntegrator)
+{
+    const Options o = parse({"--aov", "primid", "s.obj"});
+    EXPECT_EQ(o.render.integrator, IntegratorKind::Aov);
+    EXPECT_EQ(o.render.aov, AovKind::PrimitiveId);
+}
+
+TEST(Options, ListDevicesAndHelpNeedNoScene)
+{
+    EXPECT_TRUE(parse({"--list-devices"}).list_devices);
+    EXPECT_TRUE(parse({"--help"}).help);
+    EXPECT_TRUE(parse({"--version"}).version);
+    EXPECT_NE(usage_text().find("Exit status"), std::string::npos);
+}
+
+TEST(Options, BadInputIsAUsageErrorNamingTheOption)
+{
+    EXPECT_NE(usage_error({"--frobnicate", "s.obj"}).find("unknown option '--frobnicate'"), std::string::npos);
+    EXPECT_NE(usage_error({}).find("no scene"), std::string::npos);
+    EXPECT_NE(usage_error({"a.obj", "b.obj"}).find("more than one scene"), std::string::npos);
+    EXPECT_NE(usage_error({"--spp", "0", "s.obj"}).find("--spp"), std::string::npos);
+    EXPECT_NE(usage_error({"--spp", "ten", "s.obj"}).find("'ten'"), std::string::npos);
+    EXPECT_NE(usage_error({"--spp", "99999999999", "s.obj"}).find("--spp"), std::string::npos);
+    EXPECT_NE(usage_error({"--res", "0x0", "s.obj"}).find("--res"), std::string::npos);
+    EXPECT_NE(usage_error({"--res", "100000x1", "s.obj"}).find("--res"), std::string::npos);
+    EXPECT_NE(usage_error({"--res", "512", "s.obj"}).find("WIDTHxHEIGHT"), std::string::npos);
+    EXPECT_NE(usage_error({"--env", "1,2", "s.obj"}).find("--env"), std::string::npos);
+    EXPECT_NE(usage_error({"--env", "-1,0,0", "s.obj"}).find("non-negative"), std::string::npos);
+    EXPECT_NE(usage_error({"--fov", "180", "s.obj"}).find("--fov"), std::string::npos);
+    EXPECT_NE(usage_error({"--fov", "nan", "s.obj"}).find("--fov"), std::string::npos);
+    EXPECT_NE(usage_error({"--integrator", "bdpt", "s.obj"}).find("path, whitted, aov"), std::string::npos);
+    EXPECT_NE(usage_error({"--time-limit", "-3", "s.obj"}).find("--time-limit"), std::string::npos);
+    EXPECT_NE(usage_error({"--up", "0,0,0", "s.obj"}).find("--up"), std::string::npos);
+    EXPECT_NE(usage_error({"--look-from", "1,1,1", "--look-at", "1,1,1", "s.obj"}).find("differ"), std::string::npos);
+    EXPECT_NE(usage_error({"s.obj", "--spp"}).find("needs a value"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gc

@@ -1,0 +1,186 @@
+// The kernels agree with the host on every OpenCL device present: BVH traversal equals a
+// brute-force loop over all triangles, and the counter-based RNG draws identical numbers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../bvh/test_scenes.h"
+#include "gc_rng.h"
+#include "host/bvh/bvh.h"
+#include "host/bvh/traverse_host.h"
+#include "host/cl/buffer.h"
+#include "host/cl/context.h"
+#include "host/cl/device.h"
+#include "host/cl/program.h"
+#include "host/math/to_device.h"
+#include "host/scene/load.h"
+
+namespace gc {
+namespace {
+
+std::vector<cl::DeviceInfo> devices_or_skip()
+{
+    std::string why;
+    std::vector<cl::DeviceInfo> devices = cl::list_devices(&why);
+    return devices;
+}
+
+// Random rays: origins inside the scene's (slightly enlarged) bounds, uniform directions.
+std::vector<Ray> random_rays(const Scene& scene, std::size_t count, std::uint32_t seed)
+{
+    test::Rng rng(seed);
+    Bounds3 b = scene.bounds();
+    const Vec3 pad = 0.1f * b.diagonal();
+    b.lo -= pad;
+    b.hi += pad;
+    std::vector<Ray> rays(count);
+    for (Ray& r : rays) {
+        r.origin = rng.point(b);
+        r.direction = rng.direction();
+    }
+    return rays;
+}
+
+struct TraversalFigures {
+    std::size_t hits = 0;
+    std::size_t prim_mismatches = 0;
+    std::size_t t_mismatches = 0;
+    std::size_t any_mismatches = 0;
+    float max_rel_t = 0.0f;
+};
+
+TraversalFigures compare_traversal(const cl::DeviceInfo& device, const Scene& scene, const std::vector<Ray>& rays,
+                                   const std::vector<dev::GcHit>& brute_force)
+{
+    const FlatBvh bvh = build_bvh(scene);
+    const cl::Context context(device);
+    const cl::Program program(context, "trace.cl");
+    std::vector<dev::GcRay> device_rays;
+    for (const Ray& r : rays) device_rays.push_back(to_device(r));
+    const auto count = static_cast<std::uint32_t>(rays.size());
+
+    auto nodes = cl::Buffer<dev::GcBvhNode>::create(context, bvh.nodes.size(), CL_MEM_READ_ONLY, "nodes");
+    auto tris = cl::Buffer<dev::GcTriangle>::create(context, bvh.triangles.size(), CL_MEM_READ_ONLY, "triangles");
+    auto ray_buf = cl::Buffer<dev::GcRay>::create(context, count, CL_MEM_READ_ONLY, "rays");
+    auto hit_buf = cl::Buffer<dev::GcHit>::create(context, count, CL_MEM_WRITE_ONLY, "hits");
+    auto occ_buf = cl::Buffer<std::uint32_t>::create(context, count, CL_MEM_WRITE_ONLY, "occluded");
+    nodes.write(bvh.nodes);
+    tris.write(bvh.triangles);
+    ray_buf.write(device_rays);
+
+    cl::Kernel closest = program.kernel("trace_closest");
+    closest.set_args(nodes, tris, ray_buf, hit_buf, count);
+    closest.launch(context, count);
+    cl::Kernel any = program.kernel("trace_any");
+    any.set_args(nodes, tris, ray_buf, occ_buf, count);
+    any.launch(context, count);
+    context.finish();
+    std::vector<dev::GcHit> hits(count);
+    std::vector<std::uint32_t> occluded(count);
+    hit_buf.read(hits);
+    occ_buf.read(occluded);
+
+    TraversalFigures f;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const dev::GcHit& expected = brute_force[i];
+        const dev::GcHit& got = hits[i];
+        if (expected.prim != GC_INVALID) ++f.hits;
+        if (got.prim != expected.prim) {
+            ++f.prim_mismatches;
+            continue;
+        }
+        if ((occluded[i] != 0) != (expected.prim != GC_INVALID)) ++f.any_mismatches;
+        if (expected.prim == GC_INVALID) continue;
+        const float rel = std::fabs(got.t - expected.t) / std::fmax(std::fabs(expected.t), 1e-30f);
+        f.max_rel_t = std::fmax(f.max_rel_t, rel);
+        if (rel > 1e-5f) ++f.t_mismatches;
+    }
+    return f;
+}
+
+void expect_traversal_matches(const Scene& scene, const std::string& name, std::size_t ray_count)
+{
+    const std::vector<cl::DeviceInfo> devices = devices_or_skip();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    const std::vector<Ray> rays = random_rays(scene, ray_count, 1234);
+    // The brute-force answer (every ray against every triangle) is the slow part: once per scene.
+    std::vector<dev::GcHit> brute_force;
+    for (const Ray& r : rays) brute_force.push_back(trace_brute_force(scene, r));
+    for (const cl::DeviceInfo& device : devices) {
+        const TraversalFigures f = compare_traversal(device, scene, rays, brute_force);
+        std::printf("[traversal] %s on %s: %zu rays, %zu hits, prim mismatches %zu, t mismatches %zu "
+                    "(max rel t error %.3g), any-hit mismatches %zu\n",
+                    name.c_str(), device.device_name.c_str(), rays.size(), f.hits, f.prim_mismatches,
+                    f.t_mismatches, static_cast<double>(f.max_rel_t), f.any_mismatches);
+        EXPECT_GT(f.hits, ray_count / 5) << "too few hits to mean anything";
+        EXPECT_EQ(f.prim_mismatches, 0u) << device.device_name;
+        EXPECT_EQ(f.t_mismatches, 0u) << device.device_name;
+        EXPECT_EQ(f.any_mismatches, 0u) << device.device_name;
+    }
+}
+
+TEST(DeviceTraversal, RandomSoupEqualsBruteForce)
+{
+    expect_traversal_matches(test::random_soup(5000, 7, 0.15f), "random soup (5k triangles)", 10000);
+}
+
+TEST(DeviceTraversal, CornellSphereEqualsBruteForce)
+{
+    const Scene scene =
+        load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj");
+    expect_traversal_matches(scene, "CornellBox-Sphere", 10000);
+}
+
+TEST(DeviceTraversal, DragonEqualsBruteForce)
+{
+    const std::filesystem::path path =
+        std::filesystem::path(GC_TEST_SHARED_DIR) / "scenes/stanford-dragon-100k/dragon.obj";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+    // 2,500 rays x 100k triangles of brute force is already 2.5e8 triangle tests.
+    expect_traversal_matches(load_scene(path), "stanford-dragon-100k", 2500);
+}
+
+TEST(DeviceRng, StreamEqualsHost)
+{
+    const std::vector<cl::DeviceInfo> devices = devices_or_skip();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    // Keys spread over pixels, samples, blocks and seeds, including the extremes.
+    std::vector<glm::uvec4> keys;
+    test::Rng rng(99);
+    for (std::uint32_t i = 0; i < 4096; ++i)
+        keys.push_back({rng.below(1u << 24), rng.below(1u << 20), rng.below(4096), rng.below(1000)});
+    keys.push_back({0u, 0u, 0u, 0u});
+    keys.push_back({0xffffffffu, 0xffffffffu, 0xffffffffu, 0xffffffffu});
+    const auto count = static_cast<std::uint32_t>(keys.size());
+    for (const cl::DeviceInfo& device : devices) {
+        const cl::Context context(device);
+        const cl::Program program(context, "rng_probe.cl");
+        auto key_buf = cl::Buffer<glm::uvec4>::create(context, count, CL_MEM_READ_ONLY, "rng keys");
+        auto value_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "rng values");
+        key_buf.write(keys);
+        cl::Kernel kernel = program.kernel("rng_probe");
+        kernel.set_args(key_buf, value_buf, count);
+        kernel.launch(context, count);
+        context.finish();
+        std::vector<glm::vec4> values(count);
+        value_buf.read(values);
+        std::size_t differing = 0;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const glm::vec4 expected = dev::gc_rand4(keys[i].x, keys[i].y, keys[i].z, keys[i].w);
+            if (values[i] != expected) ++differing;
+            for (int c = 0; c < 4; ++c) {
+                ASSERT_GE(values[i][c], 0.0f);
+                ASSERT_LT(values[i][c], 1.0f);
+            }
+        }
+        std::printf("[rng] %s: %u keys, %zu differ from the host\n", device.device_name.c_str(), count, differing);
+        EXPECT_EQ(differing, 0u) << device.device_name;
+    }
+}
+
+}  // namespace
+}  // namespace gc
