@@ -6,8 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "host/app/consistency_command.h"
 #include "host/app/options.h"
 #include "host/app/render_command.h"
+#include "host/app/vk_commands.h"
 #include "host/util/error.h"
 #include "host/util/log.h"
 
@@ -26,6 +28,9 @@ int main(int argc, char** argv)
         }
         set_log_level(options.quiet ? LogLevel::Quiet : (options.verbose ? LogLevel::Verbose : LogLevel::Normal));
         if (options.list_devices) return static_cast<int>(run_list_devices());
+        if (options.preview) return static_cast<int>(run_preview(options));
+        if (!options.cross_check.empty()) return static_cast<int>(run_cross_check(options));
+        if (options.consistency) return static_cast<int>(run_consistency(options));
         return static_cast<int>(run_render(options));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "geocold-cl: %s\nTry 'geocold-cl --help' for more information.\n", e.what());

@@ -125,9 +125,18 @@ Options parse_options(const std::vector<std::string>& args)
             if (seconds <= 0.0f) bad_value(arg, v, "a positive number of seconds");
             o.render.time_limit_seconds = seconds;
         }
-        else if (arg == "--res") parse_resolution(arg, value(), o.render);
-        else if (arg == "--width") o.render.width = static_cast<int>(parse_count(arg, value(), 1, kMaxResolution));
-        else if (arg == "--height") o.render.height = static_cast<int>(parse_count(arg, value(), 1, kMaxResolution));
+        else if (arg == "--res") {
+            parse_resolution(arg, value(), o.render);
+            o.res_given = true;
+        }
+        else if (arg == "--width") {
+            o.render.width = static_cast<int>(parse_count(arg, value(), 1, kMaxResolution));
+            o.res_given = true;
+        }
+        else if (arg == "--height") {
+            o.render.height = static_cast<int>(parse_count(arg, value(), 1, kMaxResolution));
+            o.res_given = true;
+        }
         else if (arg == "--env") {
             const std::string v = value();
             const glm::vec3 env = parse_triple(arg, v);
@@ -145,6 +154,15 @@ Options parse_options(const std::vector<std::string>& args)
             if (fov <= 0.0f || fov >= 180.0f) bad_value(arg, v, "a vertical field of view in (0, 180) degrees");
             o.fov_degrees = fov;
         }
+        else if (arg == "--preview") o.preview = true;
+        else if (arg == "--cross-check") {
+            o.cross_check = value();
+            if (o.cross_check != "vulkan") bad_value(arg, o.cross_check, "vulkan");
+        }
+        else if (arg == "--vk-device") o.vk_device = value();
+        else if (arg == "--consistency") o.consistency = true;
+        else if (arg == "--json") o.json_path = value();
+        else if (arg == "--heatmap") o.heatmap_dir = value();
         else if (arg == "--gltf-scene") o.gltf_scene = static_cast<int>(parse_count(arg, value(), 0, 1u << 20));
         else if (!arg.empty() && arg[0] == '-' && arg != "-") throw UsageError("unknown option '" + arg + "'");
         else if (o.scene_path.empty()) o.scene_path = arg;
@@ -153,6 +171,8 @@ Options parse_options(const std::vector<std::string>& args)
     if (o.up && length(*o.up) == 0.0f) throw UsageError("--up must not be the zero vector");
     if (o.look_from && o.look_at && *o.look_from == *o.look_at)
         throw UsageError("--look-from and --look-at must differ");
+    if ((!o.json_path.empty() || !o.heatmap_dir.empty()) && !o.consistency)
+        throw UsageError(std::string(o.json_path.empty() ? "--heatmap" : "--json") + " needs --consistency");
     if (!o.help && !o.version && !o.list_devices && o.scene_path.empty())
         throw UsageError("no scene given");
     return o;
@@ -176,6 +196,8 @@ Device:
   -d, --device SPEC        any | gpu | cpu | <index> | <name substring>   (default: any,
                            which prefers a GPU)
       --list-devices       list the OpenCL devices and exit
+      --vk-device SPEC     Vulkan device for --preview / --cross-check: any | lavapipe |
+                           <name substring>   (default: any, which prefers a GPU)
 Rendering:
       --integrator NAME    path (default; unbiased path tracer with next-event estimation),
                            whitted (classic ray tracing), aov (first-hit outputs)
@@ -192,6 +214,20 @@ Rendering:
       --wavefront-size N   paths in flight per pass (default: chosen for the device)
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
+Vulkan (when built with it):
+      --preview            draw the rasterised mesh pass (albedo under a headlight) with
+                           Vulkan instead of rendering; no OpenCL needed
+      --cross-check vulkan render with OpenCL and with Vulkan, print how far apart they
+                           are (primitive ids, depth, radiance); exit 6 beyond tolerance
+Consistency (same image on every device):
+      --consistency        render on every OpenCL device (and Vulkan when built) with one
+                           seed/spp/size (default 64 spp, 128x128) and compare each pair:
+                           relative MSE, max |difference|, % of pixels within 1e-3
+                           relative; exit 6 when a pair fails, 0 with a SKIPPED note when
+                           fewer than two devices exist
+      --json FILE          with --consistency: also write the figures as JSON
+      --heatmap DIR        with --consistency: a difference heat map per pair (PNG, or PPM
+                           without OpenImageIO)
 Scene:
       --gltf-scene N       which scene of a glTF file (default: the file's default scene)
 Other:
@@ -207,7 +243,7 @@ Environment:
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file
   4 no usable device or a device failure   5 output could not be written
-  6 a cross-check found images that disagree   130 interrupted (partial image written)
+  6 a cross-check or consistency run found images that disagree   130 interrupted (partial image written)
   1 internal error (a bug: please report it)
 )";
     return s.str();

@@ -22,6 +22,13 @@ struct Options {
     bool verbose = false;
     int gltf_scene = -1;         // -1 = the file's default scene
     bool spp_given = false;
+    bool preview = false;         // --preview: the Vulkan raster pass instead of a render
+    std::string cross_check;      // --cross-check API: "vulkan", or empty
+    std::string vk_device = "any"; // --vk-device: any | lavapipe | <name substring>
+    bool consistency = false;     // --consistency: render on every device, compare the pairs
+    std::string json_path;        // --json FILE: the consistency report as JSON
+    std::string heatmap_dir;      // --heatmap DIR: a difference heat map per device pair
+    bool res_given = false;       // --res / --width / --height given (consistency's default is 128x128)
 
     RenderSettings render;
 

@@ -9,39 +9,6 @@
 namespace gc {
 namespace {
 
-std::uint32_t aov_code(AovKind kind)
-{
-    switch (kind) {
-    case AovKind::Preview: return GC_AOV_PREVIEW;
-    case AovKind::Albedo: return GC_AOV_ALBEDO;
-    case AovKind::Normal: return GC_AOV_NORMAL;
-    case AovKind::Depth: return GC_AOV_DEPTH;
-    case AovKind::PrimitiveId: return GC_AOV_PRIMID;
-    }
-    return GC_AOV_PREVIEW;
-}
-
-std::uint32_t integrator_code(IntegratorKind kind)
-{
-    switch (kind) {
-    case IntegratorKind::Aov: return GC_INTEGRATOR_AOV;
-    case IntegratorKind::Path: return GC_INTEGRATOR_PATH;
-    case IntegratorKind::Whitted: return GC_INTEGRATOR_WHITTED;
-    }
-    return GC_INTEGRATOR_AOV;
-}
-
-float total_emitter_power(const Scene& scene, const std::vector<dev::GcEmitter>& emitters)
-{
-    // Must match gc_light_pdf_w: pdf_area = luminance(Le) / total, with total = sum area * luminance.
-    double total = 0.0;
-    for (const dev::GcEmitter& e : emitters) {
-        const glm::vec3 le = scene.materials[scene.material_ids[e.triangle]].emission;
-        total += static_cast<double>(e.area) * (0.2126 * le.x + 0.7152 * le.y + 0.0722 * le.z);
-    }
-    return static_cast<float>(total);
-}
-
 void zero_counters(const cl::Context& context, const cl::Buffer<std::uint32_t>& counters, std::uint32_t first,
                    std::uint32_t count)
 {
@@ -78,20 +45,7 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
     m_batch = std::min(pixels, wavefront);
 
-    m_params.camera = make_camera(camera, settings.width, settings.height);
-    m_params.env_radiance = glm::vec4(settings.env_radiance, 0.0f);
-    m_params.width = static_cast<std::uint32_t>(settings.width);
-    m_params.height = static_cast<std::uint32_t>(settings.height);
-    m_params.seed = settings.seed;
-    m_params.max_depth = settings.max_depth;
-    m_params.integrator = integrator_code(settings.integrator);
-    m_params.aov = aov_code(settings.aov);
-    m_params.num_triangles = m_scene.triangle_count;
-    m_params.num_emitters = m_scene.emitter_count;
-    m_params.num_point_lights = m_scene.point_light_count;
-    m_params.num_textures = m_scene.texture_count;
-    m_params.rr_depth = settings.rr_depth;
-    m_params.emitter_power = total_emitter_power(scene, make_emitters(scene));
+    m_params = make_render_params(scene, camera, settings);
 
     m_film = cl::Buffer<glm::vec4>::create(context, pixels, CL_MEM_READ_WRITE, "film");
     const glm::vec4 zero(0.0f);
@@ -140,7 +94,7 @@ void Renderer::render_sample()
 void Renderer::run_aov_batch()
 {
     m_aov.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
-                   m_scene.texels, m_film);
+                   m_scene.texels, m_scene.emitters, m_film);
     m_aov.launch(m_context, m_params.pixel_count, 0, "first-hit AOVs");
 }
 

@@ -35,6 +35,28 @@ Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
     return len > 0.0f && std::isfinite(len) ? Normal3(n / len) : Normal3(0, 0, 0);
 }
 
+std::uint32_t aov_code(AovKind kind)
+{
+    switch (kind) {
+    case AovKind::Preview: return GC_AOV_PREVIEW;
+    case AovKind::Albedo: return GC_AOV_ALBEDO;
+    case AovKind::Normal: return GC_AOV_NORMAL;
+    case AovKind::Depth: return GC_AOV_DEPTH;
+    case AovKind::PrimitiveId: return GC_AOV_PRIMID;
+    }
+    return GC_AOV_PREVIEW;
+}
+
+std::uint32_t integrator_code(IntegratorKind kind)
+{
+    switch (kind) {
+    case IntegratorKind::Aov: return GC_INTEGRATOR_AOV;
+    case IntegratorKind::Path: return GC_INTEGRATOR_PATH;
+    case IntegratorKind::Whitted: return GC_INTEGRATOR_WHITTED;
+    }
+    return GC_INTEGRATOR_AOV;
+}
+
 }  // namespace
 
 std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
@@ -145,6 +167,38 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene)
     }
     if (!out.empty()) out.back().cdf = 1.0f;
     return out;
+}
+
+float total_emitter_power(const Scene& scene)
+{
+    double total = 0.0;
+    for (const dev::GcEmitter& e : make_emitters(scene)) {
+        const glm::vec3 le = scene.materials[scene.material_ids[e.triangle]].emission;
+        total += static_cast<double>(e.area) * (0.2126 * le.x + 0.7152 * le.y + 0.0722 * le.z);
+    }
+    return static_cast<float>(total);
+}
+
+dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera, const RenderSettings& settings)
+{
+    dev::GcRenderParams p{};
+    p.camera = make_camera(camera, settings.width, settings.height);
+    p.env_radiance = glm::vec4(settings.env_radiance, 0.0f);
+    p.width = static_cast<std::uint32_t>(settings.width);
+    p.height = static_cast<std::uint32_t>(settings.height);
+    p.seed = settings.seed;
+    p.max_depth = settings.max_depth;
+    p.integrator = integrator_code(settings.integrator);
+    p.aov = aov_code(settings.aov);
+    p.num_triangles = static_cast<std::uint32_t>(scene.triangle_count());
+    p.num_emitters = static_cast<std::uint32_t>(make_emitters(scene).size());  // zero-area emitters dropped
+    p.num_point_lights = static_cast<std::uint32_t>(scene.point_lights.size());
+    p.num_textures = static_cast<std::uint32_t>(scene.textures.size());
+    p.rr_depth = settings.rr_depth;
+    p.emitter_power = total_emitter_power(scene);
+    p.pixel_offset = 0;
+    p.pixel_count = p.width * p.height;
+    return p;
 }
 
 dev::GcCamera make_camera(const Camera& camera, int width, int height)

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gc_types.h"
+#include "host/render/render_settings.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -24,6 +25,14 @@ std::vector<dev::GcPointLight> make_point_lights(const Scene& scene);
 // the luminance of the emitted radiance). Zero-area emitters are left out: they can never
 // be hit nor sampled. The last cdf is exactly 1.
 std::vector<dev::GcEmitter> make_emitters(const Scene& scene);
+
+// Sum over emitters of area * luminance(emission): the normalisation of the light pdf the
+// kernels compute (gc_light_pdf_w), consistent with make_emitters' selection probabilities.
+float total_emitter_power(const Scene& scene);
+
+// The kernels' parameter block for a whole-image pass; the renderer then sets the batch
+// (pixel_offset/pixel_count) and sample_index per pass. Shared by the OpenCL and Vulkan paths.
+dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera, const RenderSettings& settings);
 
 // Pinhole camera for a width x height image (square pixels, vertical field of view).
 dev::GcCamera make_camera(const Camera& camera, int width, int height);

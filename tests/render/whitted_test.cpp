@@ -172,7 +172,7 @@ TEST_F(WhittedTest, AreaLightEstimateConverges)
     const double expected = 0.5 / std::numbers::pi * 2.0 * integral;
     double sum = 0.0;
     for (std::uint32_t y = 0; y < 32; ++y)
-        for (std::uint32_t x = 0; x < 32; ++x) sum += rgb(film, x, y).g;
+        for (std::uint32_t x = 0; x < 32; ++x) sum += rgb(film, x, y).y;
     const double mean = sum / (32.0 * 32.0);
     std::printf("area light: mean %.6f expected %.6f rel %.2e (16384 samples)\n", mean, expected, rel(mean, expected));
     EXPECT_LT(rel(mean, expected), 0.01);

@@ -1,0 +1,110 @@
+#include "host/app/vk_commands.h"
+
+#ifdef GC_HAVE_VULKAN
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "host/bvh/bvh.h"
+#include "host/cl/context.h"
+#include "host/cl/device.h"
+#include "host/image/image_io.h"
+#include "host/render/scene_convert.h"
+#include "host/scene/camera_framing.h"
+#include "host/scene/load.h"
+#include "host/util/log.h"
+#include "host/vk/context.h"
+#include "host/vk/cross_check.h"
+#include "host/vk/raster_pass.h"
+#endif
+
+namespace gc {
+
+#ifdef GC_HAVE_VULKAN
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+Scene load(const Options& options)
+{
+    LoadOptions load_options;
+    load_options.gltf_scene = options.gltf_scene;
+    return load_scene(options.scene_path, load_options);
+}
+
+Camera camera_for(const Scene& scene, const Options& options)
+{
+    CameraOverrides overrides;
+    overrides.look_from = options.look_from;
+    overrides.look_at = options.look_at;
+    overrides.up = options.up;
+    overrides.fov = options.fov_degrees;
+    return resolve_camera(scene, overrides);
+}
+
+}  // namespace
+
+ExitCode run_preview(const Options& options)
+{
+    const std::filesystem::path output =
+        options.output_path.empty() ? std::filesystem::path(std::filesystem::path(options.scene_path).stem().string() + ".png")
+                                    : std::filesystem::path(options.output_path);
+    check_output_path(output);
+    const Scene scene = load(options);
+    const Camera camera = camera_for(scene, options);
+    const vk::Context context(options.vk_device);
+    vk::RasterPass pass(context, scene, camera, options.render);
+    const auto t0 = Clock::now();
+    const vk::GBuffer g = pass.render();
+    const double seconds = seconds_since(t0);
+
+    ImageMetadata meta;
+    meta.device = context.description();
+    meta.integrator = "raster:preview";
+    meta.scene = options.scene_path;
+    meta.spp = 1;
+    meta.seconds = seconds;
+    write_image(output, g.preview, meta);
+    char timing[64];
+    std::snprintf(timing, sizeof timing, "%.3f", seconds);
+    log_info("wrote " + output.string() + " (" + std::to_string(g.width) + "x" + std::to_string(g.height) +
+             " raster preview, " + timing + " s on " + context.description() + ")");
+    return ExitCode::Ok;
+}
+
+ExitCode run_cross_check(const Options& options)
+{
+    RenderSettings settings = options.render;
+    // The Vulkan side is a megakernel on (typically) a CPU rasteriser: keep the defaults cheap.
+    if (!options.spp_given) settings.spp = 4;
+    if (!options.res_given) settings.width = settings.height = 128;
+    const Scene scene = load(options);
+    const Camera camera = camera_for(scene, options);
+    // Radiance needs light: a scene without emitters is lit by a white environment unless
+    // --env says otherwise.
+    if (make_emitters(scene).empty() && settings.env_radiance == glm::vec3(0.0f)) {
+        settings.env_radiance = glm::vec3(1.0f);
+        log_info("the scene has no emitters: the radiance check uses --env 1,1,1");
+    }
+    const FlatBvh bvh = build_bvh(scene);
+    const cl::DeviceInfo device = cl::select_device(options.device);
+    const cl::Context cl_context(device);
+    const vk::Context vk_context(options.vk_device);
+    log_info("OpenCL: " + device.device_name + " (" + device.platform_name + "); Vulkan: " + vk_context.description());
+    const vk::CrossCheckReport report = vk::cross_check(cl_context, vk_context, scene, bvh, camera, settings);
+    std::fputs(report.format().c_str(), stdout);
+    const bool ok = report.passed();
+    std::puts(ok ? "cross-check passed" : "cross-check FAILED: OpenCL and Vulkan disagree beyond tolerance");
+    return ok ? ExitCode::Ok : ExitCode::Mismatch;
+}
+
+#else
+
+ExitCode run_preview(const Options&) { throw UsageError("this build has no Vulkan support (--preview)"); }
+ExitCode run_cross_check(const Options&) { throw UsageError("this build has no Vulkan support (--cross-check)"); }
+
+#endif
+
+}  // namespace gc

@@ -1,0 +1,137 @@
+#include "host/vk/cross_check.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "host/render/renderer.h"
+#include "host/render/scene_convert.h"
+#include "host/vk/compute_reference.h"
+#include "host/vk/raster_pass.h"
+
+namespace gc::vk {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+RenderSettings aov_settings(RenderSettings s, AovKind kind)
+{
+    s.integrator = IntegratorKind::Aov;
+    s.aov = kind;
+    return s;
+}
+
+// Both render_* time only the sample loop (not program builds or uploads) into *seconds.
+Film render_cl(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+               const RenderSettings& settings, std::uint32_t spp, double* seconds = nullptr)
+{
+    Renderer renderer(context, scene, bvh, camera, settings);
+    const auto t0 = Clock::now();
+    while (renderer.samples_done() < spp) renderer.render_sample();
+    if (seconds) *seconds = seconds_since(t0);
+    return renderer.film();
+}
+
+Film render_vk(const Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+               const RenderSettings& settings, std::uint32_t spp, double* seconds = nullptr)
+{
+    ComputeReference reference(context, scene, bvh, camera, settings);
+    const auto t0 = Clock::now();
+    while (reference.samples_done() < spp) reference.render_sample();
+    if (seconds) *seconds = seconds_since(t0);
+    return reference.film();
+}
+
+std::string line(const char* label, const std::string& value, bool ok)
+{
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, "  %-48s %-24s %s\n", label, value.c_str(), ok ? "ok" : "FAIL");
+    return buffer;
+}
+
+std::string num(const char* format, double value)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, value);
+    return buffer;
+}
+
+}  // namespace
+
+bool CrossCheckReport::passed(const Tolerances& tol) const
+{
+    return raster.id_agreement >= tol.min_id_agreement && raster.max_depth_rel_error <= tol.max_depth_rel_error &&
+           compute_aov.id_agreement >= tol.min_id_agreement &&
+           compute_aov.max_depth_rel_error <= tol.max_depth_rel_error && radiance.rel_mse <= tol.max_rel_mse &&
+           radiance.within >= tol.min_within && radiance.ref_mean > 0.0;
+}
+
+std::string CrossCheckReport::format(const Tolerances& tol) const
+{
+    std::string s;
+    s += "cross-check " + std::to_string(width) + "x" + std::to_string(height) + ", " + std::to_string(spp) +
+         " spp (OpenCL vs Vulkan)\n";
+    s += line("raster primid agreement (non-edge covered px)",
+              num("%.3f %%", 100.0 * raster.id_agreement) + " of " + std::to_string(raster.compared),
+              raster.id_agreement >= tol.min_id_agreement);
+    s += line("  edge pixels excluded", std::to_string(raster.edge_excluded) + " of " + std::to_string(raster.covered),
+              true);
+    s += line("raster depth max rel error (equal ids)", num("%.3g", raster.max_depth_rel_error),
+              raster.max_depth_rel_error <= tol.max_depth_rel_error);
+    s += line("compute primid agreement (all covered px)",
+              num("%.3f %%", 100.0 * compute_aov.id_agreement) + " of " + std::to_string(compute_aov.compared),
+              compute_aov.id_agreement >= tol.min_id_agreement);
+    s += line("compute depth max rel error (equal ids)", num("%.3g", compute_aov.max_depth_rel_error),
+              compute_aov.max_depth_rel_error <= tol.max_depth_rel_error);
+    s += line("radiance rel MSE", num("%.3g", radiance.rel_mse), radiance.rel_mse <= tol.max_rel_mse);
+    s += line("radiance pixels within 1e-3 relative", num("%.3f %%", 100.0 * radiance.within),
+              radiance.within >= tol.min_within);
+    s += line("  max rel error", num("%.3g", radiance.max_rel_error), true);
+    s += line("  mean OpenCL radiance (must not be black)", num("%.4g", radiance.ref_mean), radiance.ref_mean > 0.0);
+    s += "  time: Vulkan raster " + num("%.3f", raster_seconds) + " s/frame, Vulkan compute path " +
+         num("%.3f", vk_path_seconds_per_spp) + " s/spp, OpenCL path " + num("%.3f", cl_path_seconds_per_spp) +
+         " s/spp\n";
+    return s;
+}
+
+CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_context, const Scene& scene,
+                             const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings)
+{
+    CrossCheckReport report;
+    report.width = static_cast<std::uint32_t>(settings.width);
+    report.height = static_cast<std::uint32_t>(settings.height);
+    report.spp = settings.spp;
+
+    // OpenCL ray-cast AOVs: per-pixel facts, one sample.
+    const RenderSettings id_settings = aov_settings(settings, AovKind::PrimitiveId);
+    const RenderSettings depth_settings = aov_settings(settings, AovKind::Depth);
+    const std::vector<std::int32_t> cl_ids = ids_from_film(render_cl(cl_context, scene, bvh, camera, id_settings, 1));
+    const std::vector<float> cl_depth = depth_from_film(render_cl(cl_context, scene, bvh, camera, depth_settings, 1));
+
+    RasterPass raster(vk_context, scene, camera, settings);
+    const auto t0 = Clock::now();
+    const GBuffer g = raster.render();
+    report.raster_seconds = seconds_since(t0);
+    const dev::GcCamera device_camera = make_camera(camera, settings.width, settings.height);
+    report.raster = compare_ids_depth(
+        cl_ids, cl_depth, g.primid, g.depth,
+        edge_pixels(scene, device_camera, cl_ids, g.primid, report.width, report.height));
+
+    const std::vector<std::int32_t> vk_ids = ids_from_film(render_vk(vk_context, scene, bvh, camera, id_settings, 1));
+    const std::vector<float> vk_depth = depth_from_film(render_vk(vk_context, scene, bvh, camera, depth_settings, 1));
+    // The compute reference runs the OpenCL traversal code itself: no pixel is excused.
+    report.compute_aov = compare_ids_depth(cl_ids, cl_depth, vk_ids, vk_depth, {});
+
+    RenderSettings path_settings = settings;
+    path_settings.integrator = IntegratorKind::Path;
+    double cl_seconds = 0.0, vk_seconds = 0.0;
+    const Film cl_film = render_cl(cl_context, scene, bvh, camera, path_settings, settings.spp, &cl_seconds);
+    const Film vk_film = render_vk(vk_context, scene, bvh, camera, path_settings, settings.spp, &vk_seconds);
+    report.cl_path_seconds_per_spp = cl_seconds / settings.spp;
+    report.vk_path_seconds_per_spp = vk_seconds / settings.spp;
+    report.radiance = compare_radiance(cl_film, vk_film);
+    return report;
+}
+
+}  // namespace gc::vk

@@ -1,0 +1,42 @@
+// The OpenCL/Vulkan cross-check (DESIGN.md "Cross-checks"): the same scene, camera, seed and
+// spp rendered by the OpenCL kernels and by the Vulkan path, and the figures that say how
+// far apart they are.
+//   - raster primitive id and depth (Vulkan mesh pass) vs the OpenCL ray-cast AOVs;
+//   - the same for the Vulkan compute AOVs (same traversal code: should agree everywhere);
+//   - Vulkan compute path-traced radiance vs the OpenCL wavefront path tracer.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "host/bvh/bvh.h"
+#include "host/cl/context.h"
+#include "host/render/render_settings.h"
+#include "host/scene/scene.h"
+#include "host/vk/agreement.h"
+#include "host/vk/context.h"
+
+namespace gc::vk {
+
+struct CrossCheckReport {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::uint32_t spp = 0;
+    IdDepthAgreement raster;      // Vulkan raster G-buffer vs OpenCL ray-cast AOVs
+    IdDepthAgreement compute_aov; // Vulkan compute AOVs vs OpenCL ray-cast AOVs
+    RadianceAgreement radiance;   // Vulkan compute path tracer vs OpenCL path tracer
+    double raster_seconds = 0.0;  // one raster frame (render + read back)
+    double vk_path_seconds_per_spp = 0.0;
+    double cl_path_seconds_per_spp = 0.0;
+
+    bool passed(const Tolerances& tol = {}) const;
+    // Human-readable figures, one per line, each marked ok / FAIL against `tol`.
+    std::string format(const Tolerances& tol = {}) const;
+};
+
+// Renders with both APIs. settings: width, height, spp, seed, max_depth, rr_depth and
+// env_radiance are used; the integrator fields are set per pass.
+CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_context, const Scene& scene,
+                             const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings);
+
+}  // namespace gc::vk

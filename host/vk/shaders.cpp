@@ -1,0 +1,27 @@
+#include "host/vk/shaders.h"
+
+namespace gc::vk::shaders {
+namespace {
+
+// glslc -mfmt=c writes each module as a braced list of 32-bit words.
+constexpr std::uint32_t kRasterVert[] =
+#include "raster.vert.inc"
+    ;
+constexpr std::uint32_t kRasterFrag[] =
+#include "raster.frag.inc"
+    ;
+constexpr std::uint32_t kAovComp[] =
+#include "aov.comp.inc"
+    ;
+constexpr std::uint32_t kPathComp[] =
+#include "path.comp.inc"
+    ;
+
+}  // namespace
+
+std::span<const std::uint32_t> raster_vert() { return kRasterVert; }
+std::span<const std::uint32_t> raster_frag() { return kRasterFrag; }
+std::span<const std::uint32_t> aov_comp() { return kAovComp; }
+std::span<const std::uint32_t> path_comp() { return kPathComp; }
+
+}  // namespace gc::vk::shaders

@@ -1,0 +1,15 @@
+// The SPIR-V of kernels/vk/*, compiled by glslc at build time and embedded in the binary
+// (no shader files to find at run time).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+namespace gc::vk::shaders {
+
+std::span<const std::uint32_t> raster_vert();
+std::span<const std::uint32_t> raster_frag();
+std::span<const std::uint32_t> aov_comp();
+std::span<const std::uint32_t> path_comp();
+
+}  // namespace gc::vk::shaders

@@ -1,0 +1,75 @@
+/*
+ * gc_aov.h — the `aov` integrator's per-pixel values (the seed's "mesh render pass"
+ * outputs): which camera ray a pixel uses, and what albedo, shading normal, depth,
+ * primitive id or shaded preview it shows. Mirrors kernels/aov.cl, which can call these
+ * directly; the Vulkan compute reference (kernels/vk/aov.comp) and the raster pass
+ * (kernels/vk/raster.frag, preview) do.
+ *
+ * Needs the scene-buffer macros of gc_path_vertex.h (GC_SHADE_PARAMS, ...).
+ */
+#ifndef GC_AOV_H
+#define GC_AOV_H
+
+#include "gc_camera.h"
+#include "gc_path_vertex.h"
+
+GC_NAMESPACE_BEGIN
+
+/* Depth, normal and primitive id are per-pixel facts: they sample the pixel centre. Albedo
+ * and the preview are jittered like the path tracer's camera rays (anti-aliasing). */
+GC_FUNC GcRay gc_aov_camera_ray(GcRenderParams params, uint pixel)
+{
+    float2 jitter = make_float2(0.5f, 0.5f);
+    if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO) {
+        const float4 r = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
+        jitter = make_float2(r.x, r.y);
+    }
+    return gc_camera_ray(params.camera, params.width, params.height, pixel % params.width, pixel / params.width,
+                         jitter.x, jitter.y);
+}
+
+/* Emitted radiance at uv: the material's emission times its emission texture, if any.
+ * (The path tracer does not read emission textures yet; the preview needs them, or a
+ * glTF model with emissiveFactor 1 and a mostly black emissive map shows as a white blob.) */
+GC_FUNC float3 gc_aov_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
+{
+    GC_SHADE_UNUSED();
+    float3 emission = GC_XYZ(m.emission);
+    if (m.emission_texture != GC_INVALID)
+        emission *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.emission_texture), uv.x, uv.y));
+    return emission;
+}
+
+/* Albedo under a headlight, plus emitters shown at (clamped) full brightness.
+ * Recognisable, not physically based. dir is the viewing ray's direction. */
+GC_FUNC float3 gc_aov_preview(float3 albedo, float3 ns, float3 dir, float3 emission)
+{
+    const float cosine = fabs(dot(ns, dir));
+    return albedo * (0.15f + 0.85f * cosine) + fmin(emission, make_float3(1.0f, 1.0f, 1.0f));
+}
+
+/* The value of AOV params.aov for a camera ray and its closest hit. */
+GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, GcHit hit)
+{
+    GC_SHADE_UNUSED();
+    if (hit.prim == GC_INVALID) {
+        if (params.aov == GC_AOV_PRIMID) return make_float3(-1.0f, -1.0f, -1.0f);
+        if (params.aov == GC_AOV_PREVIEW) return GC_XYZ(params.env_radiance);
+        return make_float3(0.0f, 0.0f, 0.0f);
+    }
+    const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
+    const GcMaterial m = GC_MATERIAL(s.material);
+    if (params.aov == GC_AOV_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
+    if (params.aov == GC_AOV_NORMAL) return s.ns;
+    if (params.aov == GC_AOV_DEPTH) return make_float3(hit.t, hit.t, hit.t);
+    if (params.aov == GC_AOV_PRIMID) {
+        const float id = gc_float(hit.prim);
+        return make_float3(id, id, id);
+    }
+    return gc_aov_preview(gc_shade_albedo(GC_SHADE_ARGS, m, s.uv), s.ns, GC_XYZ(ray.dir_tmax),
+                          gc_aov_emission(GC_SHADE_ARGS, m, s.uv));
+}
+
+GC_NAMESPACE_END
+
+#endif /* GC_AOV_H */

@@ -1,0 +1,25 @@
+/*
+ * aov.comp — Vulkan compute reference of the `aov` integrator (kernels/aov.cl): one camera
+ * ray per pixel and sample through the same flat BVH, the value from gc_aov.h, added to
+ * the film. One invocation per pixel; the host dispatches one sample index at a time.
+ */
+#version 450
+#define GC_VK_COMPUTE 1
+#include "scene_bindings.glsl"
+#include "gc_traverse.h"
+#include "gc_aov.h"
+
+layout(local_size_x = GC_VK_LOCAL_SIZE) in;
+layout(push_constant) uniform Push { uint sample_index; } push;
+
+void main()
+{
+    GcRenderParams params = params_data;
+    params.sample_index = push.sample_index;
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= params.pixel_count) return;
+    const uint pixel = params.pixel_offset + i;
+    const GcRay ray = gc_aov_camera_ray(params, pixel);
+    const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
+    film[pixel] += vec4(gc_aov_value(GC_SHADE_ARGS, params, ray, hit), 1.0f);
+}

@@ -1,0 +1,23 @@
+/*
+ * bindings.h — descriptor bindings of the Vulkan passes, included by the GLSL shaders and by
+ * host/vk. Every pass uses one descriptor set (set 0) of storage buffers with these bindings.
+ */
+#ifndef GC_VK_BINDINGS_H
+#define GC_VK_BINDINGS_H
+
+#define GC_VK_BINDING_PARAMS 0    /* GcRenderParams (one) */
+#define GC_VK_BINDING_NODES 1     /* GcBvhNode[] */
+#define GC_VK_BINDING_TRIS 2      /* GcTriangle[] in BVH leaf order */
+#define GC_VK_BINDING_ATTRIBS 3   /* GcTriangleAttribs[] by scene triangle */
+#define GC_VK_BINDING_MATERIALS 4 /* GcMaterial[] */
+#define GC_VK_BINDING_TEXTURES 5  /* GcTexture[] */
+#define GC_VK_BINDING_TEXELS 6    /* uint[] RGBA8 */
+#define GC_VK_BINDING_EMITTERS 7  /* GcEmitter[] */
+#define GC_VK_BINDING_FILM 8      /* vec4[] per pixel: sum of samples (compute only) */
+#define GC_VK_BINDING_POSITIONS 9 /* vec4[] three per scene triangle (raster only) */
+#define GC_VK_BINDING_SRGB 10     /* float[256]: gc_srgb_to_linear_table (gc_srgb_table.h) */
+#define GC_VK_BINDING_COUNT 11
+
+#define GC_VK_LOCAL_SIZE 64 /* compute work-group size */
+
+#endif /* GC_VK_BINDINGS_H */

@@ -1,0 +1,54 @@
+/*
+ * path.comp — Vulkan compute reference of the path integrator: one invocation runs a whole
+ * path (a megakernel), calling the same gc_shade_vertex as the OpenCL wavefront
+ * (kernels/shade.cl) with the same random-number keying (gc_rng.h: pixel, sample index,
+ * block, seed), so both make the same decisions. The order of operations on a path's
+ * radiance is the wavefront's: a vertex's emission, then its shadow ray's contribution.
+ * The film sum runs in sample order, as accumulate.cl's does.
+ */
+#version 450
+#define GC_VK_COMPUTE 1
+#include "scene_bindings.glsl"
+#include "gc_traverse.h"
+#include "gc_path_vertex.h"
+#include "gc_camera.h"
+
+layout(local_size_x = GC_VK_LOCAL_SIZE) in;
+layout(push_constant) uniform Push { uint sample_index; } push;
+
+void main()
+{
+    GcRenderParams params = params_data;
+    params.sample_index = push.sample_index;
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= params.pixel_count) return;
+    const uint pixel = params.pixel_offset + i;
+
+    /* generate.cl */
+    const vec4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
+    GcRay ray = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
+                              pixel / params.width, jitter.x, jitter.y);
+    GcPathState path;
+    path.throughput = vec4(1.0f, 1.0f, 1.0f, 0.0f);
+    path.radiance = vec4(0.0f);
+    path.pixel = pixel;
+    path.depth = 0u;
+    path.flags = GC_PATH_SPECULAR;
+    path.pad0 = 0u;
+
+    /* extend -> shade -> shadow until the path ends (at most max_depth vertices). */
+    for (;;) {
+        const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
+        const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit);
+        path = res.path;
+        if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
+            path.radiance += res.shadow.contribution;
+        if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
+        ray = res.next;
+    }
+
+    /* accumulate.cl: a NaN or infinite sample counts as black. */
+    const vec3 L = path.radiance.xyz;
+    const bool finite = !any(isnan(L)) && !any(isinf(L));
+    film[pixel] += vec4(finite ? L : vec3(0.0f), 1.0f);
+}
