@@ -16,6 +16,10 @@ __kernel void aov_render(const GcRenderParams params,
                          __global const GcTexture* textures,
                          __global const uint* texels,
                          __global const GcEmitter* emitters,
+                         __global const GcPointLight* point_lights,
+                         __global const float4* env_pixels,
+                         __global const float* env_marginal,
+                         __global const float* env_conditional,
                          __global float4* film)
 {
     const uint i = get_global_id(0);

@@ -138,10 +138,24 @@ Options parse_options(const std::vector<std::string>& args)
             o.res_given = true;
         }
         else if (arg == "--env") {
+            // Either a constant radiance r,g,b or a lat-long map file (scaled by --env-scale).
             const std::string v = value();
-            const glm::vec3 env = parse_triple(arg, v);
-            if (env.x < 0 || env.y < 0 || env.z < 0) bad_value(arg, v, "non-negative radiance r,g,b");
-            o.render.env_radiance = env;
+            if (v.find(',') == std::string::npos && !v.empty()) {
+                o.render.env_map_path = v;
+                if (!o.env_scale_given) o.render.env_radiance = glm::vec3(1.0f);
+            } else {
+                const glm::vec3 env = parse_triple(arg, v);
+                if (env.x < 0 || env.y < 0 || env.z < 0) bad_value(arg, v, "non-negative radiance r,g,b");
+                o.render.env_radiance = env;
+                o.render.env_map_path.clear();
+            }
+        }
+        else if (arg == "--env-scale") {
+            const std::string v = value();
+            const glm::vec3 scale = parse_triple(arg, v);
+            if (scale.x < 0 || scale.y < 0 || scale.z < 0) bad_value(arg, v, "a non-negative scale r,g,b");
+            o.render.env_radiance = scale;
+            o.env_scale_given = true;
         }
         else if (arg == "--wavefront-size")
             o.render.wavefront_size = static_cast<std::uint32_t>(parse_count(arg, value(), 1024, 1u << 26));
@@ -210,7 +224,9 @@ Rendering:
       --max-depth N        path segments: 1 = emitters only, 2 = direct light (default 8)
       --rr-depth N         Russian roulette from this depth on (default 5)
       --seed N             random seed (default 0); same seed, same image
-      --env R,G,B          constant environment radiance (default 0,0,0)
+      --env R,G,B|FILE     constant environment radiance (default 0,0,0), or a lat-long
+                           map (.exr/.hdr/.pfm; +Y up), importance sampled
+      --env-scale R,G,B    multiplies the environment map (default 1,1,1)
       --wavefront-size N   paths in flight per pass (default: chosen for the device)
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)

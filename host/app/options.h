@@ -22,6 +22,7 @@ struct Options {
     bool verbose = false;
     int gltf_scene = -1;         // -1 = the file's default scene
     bool spp_given = false;
+    bool env_scale_given = false;
     bool preview = false;         // --preview: the Vulkan raster pass instead of a render
     std::string cross_check;      // --cross-check API: "vulkan", or empty
     std::string vk_device = "any"; // --vk-device: any | lavapipe | <name substring>

@@ -20,10 +20,12 @@ cl::Buffer<T> upload_buffer(const cl::Context& context, const std::vector<T>& da
 std::uint64_t DeviceScene::bytes() const
 {
     return nodes.bytes() + triangles.bytes() + attribs.bytes() + materials.bytes() + textures.bytes() +
-           texels.bytes() + emitters.bytes() + point_lights.bytes();
+           texels.bytes() + emitters.bytes() + point_lights.bytes() + env_pixels.bytes() + env_marginal.bytes() +
+           env_conditional.bytes();
 }
 
-DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh)
+DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
+                                const EnvironmentMap& environment)
 {
     DeviceScene d;
     const DeviceTextures textures = make_textures(scene);
@@ -37,10 +39,15 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     d.texels = upload_buffer(context, textures.texels, "texels");
     d.emitters = upload_buffer(context, emitters, "emitters");
     d.point_lights = upload_buffer(context, lights, "point lights");
+    d.env_pixels = upload_buffer(context, environment.pixels, "environment map");
+    d.env_marginal = upload_buffer(context, environment.marginal_cdf, "environment marginal cdf");
+    d.env_conditional = upload_buffer(context, environment.conditional_cdf, "environment conditional cdf");
     d.triangle_count = static_cast<std::uint32_t>(scene.triangle_count());
     d.emitter_count = static_cast<std::uint32_t>(emitters.size());
     d.point_light_count = static_cast<std::uint32_t>(lights.size());
     d.texture_count = static_cast<std::uint32_t>(textures.textures.size());
+    d.env_width = environment.width;
+    d.env_height = environment.height;
     return d;
 }
 

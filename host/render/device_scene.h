@@ -7,6 +7,7 @@
 #include "gc_types.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/buffer.h"
+#include "host/render/environment.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -20,16 +21,22 @@ struct DeviceScene {
     cl::Buffer<std::uint32_t> texels;
     cl::Buffer<dev::GcEmitter> emitters;
     cl::Buffer<dev::GcPointLight> point_lights;
+    cl::Buffer<glm::vec4> env_pixels;
+    cl::Buffer<float> env_marginal;
+    cl::Buffer<float> env_conditional;
 
     std::uint32_t triangle_count = 0;
     std::uint32_t emitter_count = 0;
     std::uint32_t point_light_count = 0;
     std::uint32_t texture_count = 0;
+    std::uint32_t env_width = 0;  // 0: no environment map
+    std::uint32_t env_height = 0;
 
     // Bytes of device memory the scene occupies (reported by --verbose and the benchmark).
     std::uint64_t bytes() const;
 
-    static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh);
+    static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
+                              const EnvironmentMap& environment = {});
 };
 
 }  // namespace gc

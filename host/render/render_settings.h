@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -21,7 +22,8 @@ struct RenderSettings {
     double time_limit_seconds = 0.0;   // 0 = none; otherwise stop after the pass that crosses it
     IntegratorKind integrator = IntegratorKind::Path;
     AovKind aov = AovKind::Preview;
-    glm::vec3 env_radiance{0.0f};      // constant environment
+    glm::vec3 env_radiance{0.0f};      // constant environment, or the scale of env_map_path
+    std::string env_map_path;          // lat-long environment map (.exr/.hdr/.pfm); empty = none
     std::uint32_t wavefront_size = 0;  // paths in flight per pass; 0 = chosen for the device
 };
 

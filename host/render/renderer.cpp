@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "host/render/environment.h"
 #include "host/render/scene_convert.h"
 #include "host/util/error.h"
 
@@ -38,7 +39,9 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
                    const RenderSettings& settings)
     : m_context(context),
       m_settings(settings),
-      m_scene(DeviceScene::upload(context, scene, bvh)),
+      m_scene(DeviceScene::upload(context, scene, bvh,
+                                  settings.env_map_path.empty() ? EnvironmentMap{}
+                                                                : load_environment_map(settings.env_map_path))),
       m_program(context, integrator_program(settings.integrator))
 {
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
@@ -46,6 +49,12 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     m_batch = std::min(pixels, wavefront);
 
     m_params = make_render_params(scene, camera, settings);
+    if (!settings.env_map_path.empty()) {
+        // The map's texels are the radiance; env_radiance scales them (1 unless given).
+        m_params.env_width = m_scene.env_width;
+        m_params.env_height = m_scene.env_height;
+        if (m_params.env_width == 0) m_params.env_radiance = glm::vec4(0.0f);  // a black map
+    }
 
     m_film = cl::Buffer<glm::vec4>::create(context, pixels, CL_MEM_READ_WRITE, "film");
     const glm::vec4 zero(0.0f);
@@ -94,7 +103,8 @@ void Renderer::render_sample()
 void Renderer::run_aov_batch()
 {
     m_aov.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
-                   m_scene.texels, m_scene.emitters, m_film);
+                   m_scene.texels, m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
+                   m_scene.env_conditional, m_film);
     m_aov.launch(m_context, m_params.pixel_count, 0, "first-hit AOVs");
 }
 
@@ -113,9 +123,18 @@ void Renderer::run_path_batch()
     m_generate.set_args(m_params, m_rays, m_paths, m_queue_a, m_counters);
     m_generate.launch(m_context, n, 0, "camera rays");
 
+    // On CPUs (PoCL) the host reads the queue counters back after each shade pass and launches
+    // the next stages over the live paths only, stopping once none is left: an early-returning
+    // work-item still costs PoCL a trip through its work-group loop, and reading four uints
+    // from host memory is nearly free there. GPUs keep launching over the full capacity
+    // without a read-back (the pbrt-v4 scheme): an idle work-item is cheap there, and a
+    // blocking read per bounce would stall the queue. Either way every slot gets the same
+    // work, so the image is the same bits.
+    const bool sync_counts = !m_context.device().is_gpu;
+    std::uint32_t live = n;
     m_shadow.set_args(m_params, m_scene.nodes, m_scene.triangles, m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;
-    for (std::uint32_t depth = 0; depth < m_params.max_depth; ++depth) {
+    for (std::uint32_t depth = 0; depth < m_params.max_depth && live > 0; ++depth) {
         const cl::Buffer<std::uint32_t>& queue_in = a_is_input ? m_queue_a : m_queue_b;
         const cl::Buffer<std::uint32_t>& queue_out = a_is_input ? m_queue_b : m_queue_a;
         const std::uint32_t counter_in = a_is_input ? GC_COUNTER_RAYS_A : GC_COUNTER_RAYS_B;
@@ -124,12 +143,20 @@ void Renderer::run_path_batch()
         zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
 
         m_extend.set_args(m_params, m_scene.nodes, m_scene.triangles, m_rays, m_hits, queue_in, m_counters, counter_in);
-        m_extend.launch(m_context, n, 0, "closest-hit rays");
+        m_extend.launch(m_context, live, 0, "closest-hit rays");
         m_shade.set_args(m_params, m_scene.attribs, m_scene.materials, m_scene.textures, m_scene.texels,
-                         m_scene.emitters, m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays, m_counters,
+                         m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
+                         m_scene.env_conditional, m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays, m_counters,
                          counter_in, counter_out);
-        m_shade.launch(m_context, n, 0, "shading");
-        m_shadow.launch(m_context, n, 0, "shadow rays");
+        m_shade.launch(m_context, live, 0, "shading");
+        std::uint32_t shadows = n;
+        if (sync_counts) {
+            std::uint32_t counts[GC_COUNTER_COUNT];
+            m_counters.read(counts);
+            shadows = counts[GC_COUNTER_SHADOW];
+            live = counts[counter_out];
+        }
+        m_shadow.launch(m_context, shadows, 0, "shadow rays");
         a_is_input = !a_is_input;
     }
     m_accumulate.set_args(m_params, m_paths, m_film, m_film_squares);

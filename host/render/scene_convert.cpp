@@ -35,6 +35,31 @@ Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
     return len > 0.0f && std::isfinite(len) ? Normal3(n / len) : Normal3(0, 0, 0);
 }
 
+// Per-triangle tangent frame for normal maps: T = dP/du (unit, orthogonal to the face normal)
+// and the sign w that makes B = w * cross(n, T) point up the image, i.e. along -dP/dv (glTF's
+// uv origin is the top-left texel and a normal map's +Y is "up"). Solves the 2x2 system
+// [dp1 dp2] = [T Bv] [du1 du2] (Lengyel, "Computing Tangent Space Basis Vectors for an
+// Arbitrary Mesh", 2001), per triangle rather than per vertex: the kernel re-orthogonalises T
+// against the interpolated normal. Zero when the uvs are degenerate (no normal mapping there).
+glm::vec4 triangle_tangent(const Point3& p0, const Point3& p1, const Point3& p2, glm::vec2 t0, glm::vec2 t1,
+                           glm::vec2 t2, const Normal3& ng)
+{
+    const glm::vec3 dp1 = (p1 - p0).glm();
+    const glm::vec3 dp2 = (p2 - p0).glm();
+    const glm::vec2 du1 = t1 - t0;
+    const glm::vec2 du2 = t2 - t0;
+    const float det = du1.x * du2.y - du1.y * du2.x;
+    if (!(std::fabs(det) > 1e-20f) || !std::isfinite(det)) return glm::vec4(0.0f);
+    const glm::vec3 n(ng.x, ng.y, ng.z);
+    const glm::vec3 dpdu = (dp1 * du2.y - dp2 * du1.y) / det;
+    const glm::vec3 dpdv = (dp2 * du1.x - dp1 * du2.x) / det;
+    const glm::vec3 t = dpdu - n * glm::dot(n, dpdu);
+    const float len = glm::length(t);
+    if (!(len > 0.0f) || !std::isfinite(len)) return glm::vec4(0.0f);
+    const float w = glm::dot(glm::cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f;
+    return glm::vec4(t / len, w);
+}
+
 std::uint32_t aov_code(AovKind kind)
 {
     switch (kind) {
@@ -75,6 +100,8 @@ std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
             a.uv01 = {t0.x, t0.y, t1.x, t1.y};
             a.uv2_u = t2.x;
             a.uv2_v = t2.y;
+            a.tangent = triangle_tangent(scene.vertex(i, 0), scene.vertex(i, 1), scene.vertex(i, 2), t0, t1, t2,
+                                         Normal3(a.ng.x, a.ng.y, a.ng.z));
         }
         a.material = scene.material_ids[i];
         a.flags = (has_uv ? GC_TRIF_HAS_UV : 0u) |

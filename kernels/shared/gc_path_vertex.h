@@ -25,6 +25,7 @@
 
 #include "gc_bsdf.h"
 #include "gc_frame.h"
+#include "gc_lights.h"
 #include "gc_path.h"
 #include "gc_rng.h"
 #include "gc_shading.h"
@@ -33,13 +34,14 @@
 #ifndef GC_SHADE_PARAMS
 #define GC_SHADE_PARAMS                                                                           \
     GC_GLOBAL const GcTriangleAttribs *attribs, GC_GLOBAL const GcMaterial *materials,            \
-        GC_GLOBAL const GcTexture *textures, GC_TEXELS_PARAM, GC_EMITTERS_PARAM
-#define GC_SHADE_ARGS attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG
+        GC_GLOBAL const GcTexture *textures, GC_TEXELS_PARAM, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
+#define GC_SHADE_ARGS attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
 #define GC_ATTRIB(i) attribs[i]
 #define GC_MATERIAL(i) materials[i]
 #define GC_TEXTURE(i) textures[i]
 /* For functions that read only some of the buffers (C++ warns about unused parameters). */
-#define GC_SHADE_UNUSED() ((void)attribs, (void)materials, (void)textures, (void)GC_TEXELS_ARG, (void)GC_EMITTERS_ARG)
+#define GC_SHADE_UNUSED() \
+    ((void)attribs, (void)materials, (void)textures, (void)GC_TEXELS_ARG, (void)GC_EMITTERS_ARG, GC_LIGHTS_UNUSED())
 #endif
 #ifndef GC_SHADE_UNUSED
 #define GC_SHADE_UNUSED()
@@ -69,10 +71,181 @@ GC_FUNC float3 gc_shade_albedo(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
     return albedo;
 }
 
+/* glTF base colour and alpha at uv: baseColorFactor times the (sRGB-decoded) texture. */
+GC_FUNC float4 gc_shade_base_color(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
+{
+    GC_SHADE_UNUSED();
+    float4 c = m.albedo;
+    if (m.albedo_texture != GC_INVALID)
+        c *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.albedo_texture), uv.x, uv.y);
+    return c;
+}
+
+/* Emitted radiance at uv: emissiveFactor (times KHR_materials_emissive_strength) times the
+ * sRGB emissive texture. Light selection and MIS densities use the untextured factor (it is
+ * what the host's emitter power sums), so only the radiance is textured: still unbiased. */
+GC_FUNC float3 gc_shade_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
+{
+    GC_SHADE_UNUSED();
+    float3 e = GC_XYZ(m.emission);
+    if (m.emission_texture != GC_INVALID)
+        e *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.emission_texture), uv.x, uv.y));
+    return e;
+}
+
+/* The material with its metallicRoughness texture folded into the factors (glTF: B = metal,
+ * G = roughness, linear), so gc_bsdf.h sees plain numbers. */
+GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
+{
+    GC_SHADE_UNUSED();
+    if (m.metallic_roughness_texture != GC_INVALID) {
+        const float4 mr = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.metallic_roughness_texture), uv.x, uv.y);
+        m.pbr.x *= mr.z;
+        m.pbr.y *= mr.y;
+    }
+    return m;
+}
+
+/* Shading normal with the material's tangent-space normal map applied. The host stores one
+ * tangent per triangle (GcTriangleAttribs.tangent); it is re-orthogonalised against the
+ * interpolated normal ns here (Gram-Schmidt), B = w * cross(ns, T). A perturbed normal that
+ * would face away from the geometric side (a texel at the grazing limit) keeps ns. */
+GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float3 ns, float3 ng, float2 uv)
+{
+    GC_SHADE_UNUSED();
+    if (m.normal_texture == GC_INVALID) return ns;
+    const float3 t_tri = GC_XYZ(a.tangent);
+    const float3 t_raw = t_tri - ns * dot(ns, t_tri);
+    const float t_len = length(t_raw);
+    if (!(t_len > 1.0e-6f)) return ns;
+    const float3 t = t_raw * (1.0f / t_len);
+    const float3 b = cross(ns, t) * a.tangent.w;
+    const float4 tex = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.normal_texture), uv.x, uv.y);
+    const float3 n = t * (2.0f * tex.x - 1.0f) + b * (2.0f * tex.y - 1.0f) + ns * (2.0f * tex.z - 1.0f);
+    const float n_len = length(n);
+    if (!(n_len > 1.0e-6f)) return ns;
+    const float3 nn = n * (1.0f / n_len);
+    return dot(nn, ng) > 0.0f ? nn : ns;
+}
+
+/* Texture coordinates at barycentrics b = (b0, b1, b2) of the triangle's corners. */
+GC_FUNC float2 gc_triangle_uv(GcTriangleAttribs a, float3 b)
+{
+    return make_float2(b.x * a.uv01.x + b.y * a.uv01.z + b.z * a.uv2_u, b.x * a.uv01.y + b.y * a.uv01.w + b.z * a.uv2_v);
+}
+
+/* glTF alphaMode: MASK is transparent where alpha < alphaCutoff (pbr.z); BLEND is stochastic
+ * transparency, transparent with probability 1 - alpha (u uniform in [0, 1)). */
+GC_FUNC bool gc_alpha_transparent(GcMaterial m, float alpha, float u)
+{
+    if ((m.flags & GC_MATF_ALPHA_MASK) != 0u) return alpha < m.pbr.z;
+    if ((m.flags & GC_MATF_ALPHA_BLEND) != 0u) return u >= alpha;
+    return false;
+}
+
 /* The geometric normal on the side that direction w leaves into. */
 GC_FUNC float3 gc_side_normal(float3 ng, float3 w) { return dot(ng, w) >= 0.0f ? ng : -ng; }
 
 GC_FUNC float4 gc_with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, w); }
+
+/* Radiance a path gathers when its ray leaves the scene in direction d: the environment,
+ * MIS-weighted against environment-map sampling unless the last bounce was specular. */
+GC_FUNC float3 gc_escaped_radiance(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, float3 d)
+{
+    GC_SHADE_UNUSED();
+#if GC_HAS_LIGHT_BUFFERS
+    const float3 Le = gc_env_radiance(GC_LIGHTS_ARGS, params, d);
+    if (!gc_has_env_map(params) || (path.flags & GC_PATH_SPECULAR) != 0u) return Le;
+    const float pdf_light = gc_light_group_pmf(params) * gc_env_pdf_w(GC_LIGHTS_ARGS, params, d);
+    return Le * gc_power_heuristic(path.throughput.w, pdf_light);
+#else
+    return GC_XYZ(params.env_radiance);
+#endif
+}
+
+/* Next-event estimation's light sample from the shading point p: r.x picks a light group
+ * (emitters, point lights, environment map, in that order, uniformly among those present)
+ * and, rescaled, the light within it; r.y, r.z pick the point on it. */
+GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, float3 p, float4 r)
+{
+    GC_SHADE_UNUSED();
+    GcLightSample ls;
+    ls.wi = make_float3(0.0f, 0.0f, 1.0f);
+    ls.radiance = make_float3(0.0f, 0.0f, 0.0f);
+    ls.target = p;
+    ls.pdf_w = 0.0f;
+    ls.dist = 0.0f;
+    ls.kind = GC_LIGHT_NONE;
+    const float group_pmf = gc_light_group_pmf(params);
+    if (!(group_pmf > 0.0f)) return ls;
+    const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
+    float u = r.x * gc_float(groups);
+    uint group = gc_uint(u);
+    if (group >= groups) group = groups - 1u;
+    u = fmin(u - gc_float(group), 0.99999994f);
+    if (params.num_emitters == 0u) group += 1u;                  /* no emitter group */
+    if (group == 1u && !gc_has_point_lights(params)) group = 2u; /* no point-light group */
+
+    if (group == 0u) {
+        const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params.num_emitters, u));
+        const float3 b = gc_sample_uniform_triangle(r.y, r.z);
+        const float3 p_light = b.x * GC_XYZ(e.v0) + b.y * GC_XYZ(e.v1) + b.z * GC_XYZ(e.v2);
+        const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
+        const GcMaterial lm = GC_MATERIAL(la.material);
+        const float3 to_light = p_light - p;
+        const float dist = length(to_light);
+        if (!(dist > 0.0f)) return ls;
+        ls.wi = to_light / dist;
+        const float cos_light = dot(GC_XYZ(la.ng), -ls.wi);
+        if (!gc_emits_toward(lm, cos_light)) return ls;
+        ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, gc_triangle_uv(la, b));
+        ls.pdf_w = group_pmf * gc_light_pdf_w(GC_XYZ(lm.emission), params.emitter_power, dist, cos_light);
+        ls.target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -ls.wi));
+        ls.dist = dist;
+        ls.kind = GC_LIGHT_AREA;
+        return ls;
+    }
+#if GC_HAS_LIGHT_BUFFERS
+    if (group == 1u) {
+        uint i = gc_uint(u * gc_float(params.num_point_lights));
+        if (i >= params.num_point_lights) i = params.num_point_lights - 1u;
+        const GcPointLight light = GC_POINT_LIGHT(i);
+        const float3 to_light = GC_XYZ(light.position) - p;
+        const float dist = length(to_light);
+        if (!(dist > 0.0f)) return ls;
+        ls.wi = to_light / dist;
+        ls.radiance = GC_XYZ(light.intensity) * (1.0f / (dist * dist));
+        ls.pdf_w = group_pmf / gc_float(params.num_point_lights);
+        ls.target = GC_XYZ(light.position);
+        ls.dist = dist;
+        ls.kind = GC_LIGHT_POINT;
+        return ls;
+    }
+    {
+        /* Environment map: a row from the marginal cdf, a column from that row's conditional
+         * cdf, continuous offsets inside the texel (pbrt's PiecewiseConstant2D). */
+        const uint w = params.env_width;
+        const uint h = params.env_height;
+        const uint row = gc_env_search(GC_LIGHTS_ARGS, true, 0u, h, r.y);
+        const float m0 = GC_ENV_MARGINAL(row);
+        const float m1 = GC_ENV_MARGINAL(row + 1u);
+        const float fy = m1 > m0 ? (r.y - m0) / (m1 - m0) : 0.5f;
+        const uint base = row * (w + 1u);
+        const uint col = gc_env_search(GC_LIGHTS_ARGS, false, base, w, r.z);
+        const float c0 = GC_ENV_CONDITIONAL(base + col);
+        const float c1 = GC_ENV_CONDITIONAL(base + col + 1u);
+        const float fx = c1 > c0 ? (r.z - c0) / (c1 - c0) : 0.5f;
+        ls.wi = gc_env_direction((gc_float(col) + fx) / gc_float(w), (gc_float(row) + fy) / gc_float(h));
+        /* The density is re-evaluated from the direction, exactly as gc_escaped_radiance's
+         * MIS weight will be, so the two strategies agree on every sample. */
+        ls.pdf_w = group_pmf * gc_env_pdf_w(GC_LIGHTS_ARGS, params, ls.wi);
+        ls.radiance = gc_env_radiance(GC_LIGHTS_ARGS, params, ls.wi);
+        ls.dist = GC_FLOAT_MAX;
+        ls.kind = GC_LIGHT_ENV;
+    }
+#endif
+    return ls;
+}
 
 /* Shades the vertex where `ray` (the path's last segment) ended with `hit`. */
 GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray, GcHit hit)
@@ -94,21 +267,49 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     const float3 wo_world = -GC_XYZ(ray.dir_tmax);
 
     if (hit.prim == GC_INVALID) {
-        path.radiance = gc_with_w(L + beta * GC_XYZ(params.env_radiance), path.radiance.w);
+        path.radiance = gc_with_w(L + beta * gc_escaped_radiance(GC_SHADE_ARGS, params, path, -wo_world), path.radiance.w);
         res.path = path;
         return res;
     }
 
-    const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
-    const GcMaterial m = GC_MATERIAL(s.material);
+    const GcTriangleAttribs tri = GC_ATTRIB(hit.prim);
+    const GcSurface s = gc_surface_at(tri, ray, hit);
+    const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
+    const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
+
+    /* Alpha cut-outs and stochastic transparency (glTF MASK / BLEND), at the shading level:
+     * a transparent hit continues the ray unchanged through the surface (throughput kept, no
+     * emission, no light sample). The pass counts as a path segment, as a null interaction
+     * does in Mitsuba 3's path integrator: the wavefront host runs max_depth extend/shade
+     * rounds, and the Vulkan reference must make the same decisions. BLEND's number comes
+     * from this bounce's own block (GC_RNG_BLOCK_EXTRA). Shadow rays do not see alpha (the
+     * traversal is opaque), so next-event estimation cannot reach a light through a
+     * cut-out; the continued path is therefore flagged specular, which gives its emitter or
+     * environment hit full weight instead of an MIS weight whose complement NEE never
+     * supplies: unbiased, only noisier behind cut-outs. */
+    if ((m.flags & (GC_MATF_ALPHA_MASK | GC_MATF_ALPHA_BLEND)) != 0u) {
+        const float4 ra = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
+        if (gc_alpha_transparent(m, base.w, ra.x)) {
+            path.radiance = gc_with_w(L, path.radiance.w);
+            if (path.depth < params.max_depth) {
+                const float3 d = -wo_world;
+                res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, d)), d, 0.0f, GC_FLOAT_MAX);
+                path.flags = GC_PATH_SPECULAR;
+                res.flags = GC_VERTEX_CONTINUE;
+            }
+            res.path = path;
+            return res;
+        }
+    }
 
     /* Emission seen by this ray. */
-    const float3 Le = GC_XYZ(m.emission);
+    const float3 Le = gc_shade_emission(GC_SHADE_ARGS, m, s.uv);
     const float cos_out = dot(s.ng, wo_world);
     if ((Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) && gc_emits_toward(m, cos_out)) {
         float w = 1.0f;
         if ((path.flags & GC_PATH_SPECULAR) == 0u && params.num_emitters > 0u)
-            w = gc_power_heuristic(path.throughput.w, gc_light_pdf_w(Le, params.emitter_power, hit.t, cos_out));
+            w = gc_power_heuristic(path.throughput.w, gc_light_group_pmf(params) *
+                                                          gc_light_pdf_w(GC_XYZ(m.emission), params.emitter_power, hit.t, cos_out));
         L += beta * Le * w;
     }
     if (path.depth >= params.max_depth) {
@@ -117,38 +318,31 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
         return res;
     }
 
-    const float3 albedo = gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
-    const GcFrame frame = gc_frame_from_normal(s.ns);
+    const float3 albedo = GC_XYZ(base);
+    const GcFrame frame = gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, s.ns, s.ng, s.uv));
     const float3 wo = gc_frame_to_local(frame, wo_world);
 
-    /* Next-event estimation: one point on one emitter, chosen by power. */
-    if (params.num_emitters > 0u && !gc_bsdf_is_delta(m)) {
+    /* Next-event estimation: one point on one light (gc_sample_light). */
+    if (gc_light_group_pmf(params) > 0.0f && !gc_bsdf_is_delta(m)) {
         const float4 r = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
-        const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params.num_emitters, r.x));
-        const float3 b = gc_sample_uniform_triangle(r.y, r.z);
-        const float3 p_light = b.x * GC_XYZ(e.v0) + b.y * GC_XYZ(e.v1) + b.z * GC_XYZ(e.v2);
-        const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
-        const GcMaterial lm = GC_MATERIAL(la.material);
-        const float3 to_light = p_light - s.p;
-        const float dist = length(to_light);
-        if (dist > 0.0f) {
-            const float3 wi_world = to_light / dist;
-            const float cos_light = dot(GC_XYZ(la.ng), -wi_world);
-            if (gc_emits_toward(lm, cos_light)) {
-                const float3 wi = gc_frame_to_local(frame, wi_world);
-                const float3 f = gc_bsdf_eval(m, albedo, wo, wi);
-                const float pdf_light = gc_light_pdf_w(GC_XYZ(lm.emission), params.emitter_power, dist, cos_light);
-                const float w = gc_power_heuristic(pdf_light, gc_bsdf_pdf(m, albedo, wo, wi));
-                const float3 contribution = beta * f * (fabs(wi.z) * w / pdf_light) * GC_XYZ(lm.emission);
-                if (pdf_light > 0.0f && (contribution.x > 0.0f || contribution.y > 0.0f || contribution.z > 0.0f)) {
-                    const float3 origin = gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi_world));
-                    const float3 target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -wi_world));
-                    const float3 d = target - origin;
+        const GcLightSample ls = gc_sample_light(GC_SHADE_ARGS, params, s.p, r);
+        if (ls.kind != GC_LIGHT_NONE && ls.pdf_w > 0.0f) {
+            const float3 wi = gc_frame_to_local(frame, ls.wi);
+            const float3 f = gc_bsdf_eval(m, albedo, wo, wi);
+            /* A point light is a delta: no BSDF sample can reach it, so no MIS. */
+            const float w = ls.kind == GC_LIGHT_POINT ? 1.0f : gc_power_heuristic(ls.pdf_w, gc_bsdf_pdf(m, albedo, wo, wi));
+            const float3 contribution = beta * f * (fabs(wi.z) * w / ls.pdf_w) * ls.radiance;
+            if (contribution.x > 0.0f || contribution.y > 0.0f || contribution.z > 0.0f) {
+                const float3 origin = gc_offset_ray_origin(s.p, gc_side_normal(s.ng, ls.wi));
+                if (ls.kind == GC_LIGHT_ENV) {
+                    res.shadow.ray = gc_make_ray(origin, ls.wi, 0.0f, GC_FLOAT_MAX);
+                } else {
+                    const float3 d = ls.target - origin;
                     const float len = length(d);
                     res.shadow.ray = gc_make_ray(origin, d / len, 0.0f, len);
-                    res.shadow.contribution = gc_with_w(contribution, 0.0f);
-                    res.flags |= GC_VERTEX_SHADOW;
                 }
+                res.shadow.contribution = gc_with_w(contribution, 0.0f);
+                res.flags |= GC_VERTEX_SHADOW;
             }
         }
     }

@@ -58,6 +58,8 @@ GC_STRUCT(GcTriangleAttribs) {
     float uv2_v;
     uint material;
     uint flags; /* GC_TRIF_* */
+    float4 tangent; /* xyz: unit dP/du of the triangle (normal maps); w: bitangent sign, so that
+                     * B = w * cross(n, T) points up the image (-dP/dv); zero without usable uvs */
 } GC_STRUCT_END(GcTriangleAttribs)
 
 #define GC_TRIF_HAS_UV 1u
@@ -145,7 +147,7 @@ GC_STRUCT(GcCamera) {
 /* The one parameter block every kernel takes. Set in one place on the host. */
 GC_STRUCT(GcRenderParams) {
     GcCamera camera;
-    float4 env_radiance; /* rgb: constant environment radiance; w: 0 */
+    float4 env_radiance; /* rgb: constant environment radiance, or the map's scale; w: 0 */
     uint width;
     uint height;
     uint sample_index; /* which sample of each pixel this pass renders */
@@ -162,6 +164,10 @@ GC_STRUCT(GcRenderParams) {
     uint pixel_count;  /* pixels in this pass's batch */
     uint rr_depth;     /* Russian roulette starts at this depth */
     float emitter_power; /* sum over emitters of area * luminance(emission): light pdf norm */
+    uint env_width;      /* lat-long environment map size; 0 = constant env_radiance */
+    uint env_height;
+    uint pad1;
+    uint pad2;
 } GC_STRUCT_END(GcRenderParams)
 
 /* ---- Wavefront path state (path integrator). One slot per path in flight; a slot owns
@@ -224,15 +230,15 @@ static_assert(sizeof(GcRay) == 32 && offsetof(GcRay, dir_tmax) == 16);
 static_assert(sizeof(GcHit) == 16 && offsetof(GcHit, prim) == 12);
 static_assert(sizeof(GcBvhNode) == 32 && offsetof(GcBvhNode, hi) == 16);
 static_assert(sizeof(GcTriangle) == 48 && offsetof(GcTriangle, v2) == 32);
-static_assert(sizeof(GcTriangleAttribs) == 96 && offsetof(GcTriangleAttribs, ng) == 48 &&
+static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng) == 48 &&
               offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&
-              offsetof(GcTriangleAttribs, flags) == 92);
+              offsetof(GcTriangleAttribs, flags) == 92 && offsetof(GcTriangleAttribs, tangent) == 96);
 static_assert(sizeof(GcMaterial) == 96 && offsetof(GcMaterial, type) == 64 &&
               offsetof(GcMaterial, emission_texture) == 80);
 static_assert(sizeof(GcTexture) == 16);
 static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);
-static_assert(sizeof(GcRenderParams) == 144 && offsetof(GcRenderParams, env_radiance) == 64 &&
+static_assert(sizeof(GcRenderParams) == 160 && offsetof(GcRenderParams, env_width) == 144 && offsetof(GcRenderParams, env_radiance) == 64 &&
               offsetof(GcRenderParams, width) == 80 && offsetof(GcRenderParams, pixel_offset) == 128 &&
               offsetof(GcRenderParams, emitter_power) == 140);
 static_assert(sizeof(GcPathState) == 48 && offsetof(GcPathState, pixel) == 32);

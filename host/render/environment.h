@@ -1,0 +1,34 @@
+// A lat-long environment map and the 2D piecewise-constant distribution that importance-
+// samples it (luminance times sin(theta), so texels near the poles, which cover less solid
+// angle, are chosen less): the host half of kernels/shared/gc_lights.h.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "host/image/film.h"
+
+namespace gc {
+
+struct EnvironmentMap {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<glm::vec4> pixels;      // linear RGB; row 0 is the zenith (+Y)
+    std::vector<float> marginal_cdf;    // height + 1 entries, 0 ... 1
+    std::vector<float> conditional_cdf; // height rows of width + 1 entries, each 0 ... 1
+
+    bool empty() const { return width == 0 || height == 0; }
+};
+
+// Builds the sampling distribution of an image. A black image gives an empty map (the
+// environment is then black and never sampled).
+EnvironmentMap make_environment_map(const Film& image);
+
+// Reads a lat-long map (.exr, .hdr, .pfm, ...): InputError naming the file on failure or on
+// non-finite or negative texels.
+EnvironmentMap load_environment_map(const std::filesystem::path& path);
+
+}  // namespace gc
