@@ -1,6 +1,7 @@
 #include "host/render/renderer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <vector>
 
 #include "host/render/environment.h"
@@ -129,8 +130,10 @@ void Renderer::run_path_batch()
     // from host memory is nearly free there. GPUs keep launching over the full capacity
     // without a read-back (the pbrt-v4 scheme): an idle work-item is cheap there, and a
     // blocking read per bounce would stall the queue. Either way every slot gets the same
-    // work, so the image is the same bits.
-    const bool sync_counts = !m_context.device().is_gpu;
+    // work, so the image is the same bits. GEOCOLD_WAVEFRONT_SYNC=0/1 overrides the choice
+    // (benchmarking, like GEOCOLD_LOCAL_SIZE).
+    bool sync_counts = !m_context.device().is_gpu;
+    if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) sync_counts = env[0] != '0';
     std::uint32_t live = n;
     m_shadow.set_args(m_params, m_scene.nodes, m_scene.triangles, m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;

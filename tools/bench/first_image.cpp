@@ -1,0 +1,99 @@
+#include "tools/bench/first_image.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "host/bvh/bvh.h"
+#include "host/cl/context.h"
+#include "host/cl/device.h"
+#include "host/render/renderer.h"
+#include "tools/bench/bench_scenes.h"
+
+namespace gc::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string quoted(const std::string& s)
+{
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+}  // namespace
+
+int first_image_child(int device_index, bool tiny)
+{
+    const auto start = Clock::now();
+    std::string why;
+    auto s = load_bench_scene(tiny ? "tiny" : "cornell", default_shared_dir(), &why);
+    if (!s) {
+        std::fprintf(stderr, "first-image: %s\n", why.c_str());
+        return 2;
+    }
+    const FlatBvh bvh = build_bvh(s->scene);
+    const std::vector<cl::DeviceInfo> devices = cl::list_devices();
+    if (device_index < 0 || device_index >= static_cast<int>(devices.size())) {
+        std::fprintf(stderr, "first-image: no device %d\n", device_index);
+        return 2;
+    }
+    const cl::Context context(devices[static_cast<std::size_t>(device_index)]);
+    RenderSettings settings;
+    settings.width = s->pt_width;
+    settings.height = s->pt_height;
+    settings.max_depth = 8;
+    settings.rr_depth = 9;
+    Renderer renderer(context, s->scene, bvh, s->camera, settings);
+    const auto render_start = Clock::now();
+    renderer.render_sample();
+    const Film film = renderer.film();
+    const double render = seconds_since(render_start);
+    std::printf("first-image %.6f %.6f %.6f %d\n", seconds_since(start), renderer.program().build_seconds(), render,
+                renderer.program().from_cache() ? 1 : 0);
+    return 0;
+}
+
+FirstImage run_first_image(int device_index, const std::string& cache_root, bool tiny)
+{
+    namespace fs = std::filesystem;
+    FirstImage result;
+    const fs::path root(cache_root);
+    for (const char* sub : {"geocold", "pocl", "cuda"}) fs::create_directories(root / sub);
+    const std::string exe = fs::read_symlink("/proc/self/exe").string();
+    const std::string command = "GEOCOLD_CACHE_DIR=" + quoted((root / "geocold").string()) +
+                                " POCL_CACHE_DIR=" + quoted((root / "pocl").string()) +
+                                " CUDA_CACHE_PATH=" + quoted((root / "cuda").string()) + " " + quoted(exe) +
+                                " --first-image-child " + std::to_string(device_index) + (tiny ? " --quick" : "");
+    const auto start = Clock::now();
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) {
+        result.error = "popen failed";
+        return result;
+    }
+    std::string output;
+    char buffer[256];
+    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+    const int status = pclose(pipe);
+    result.process_seconds = seconds_since(start);
+    std::istringstream in(output);
+    std::string word;
+    int cached = 0;
+    while (in >> word) {
+        if (word == "first-image" && in >> result.total_seconds >> result.compile_seconds >> result.render_seconds >> cached) {
+            result.ok = status == 0;
+            result.from_cache = cached != 0;
+        }
+    }
+    if (!result.ok) result.error = "child failed (status " + std::to_string(status) + "): " + output;
+    return result;
+}
+
+}  // namespace gc::bench

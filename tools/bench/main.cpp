@@ -1,0 +1,465 @@
+// geocold-bench: BVH build speed and quality, ray throughput, path-traced samples per second
+// and time to first image, for every OpenCL device, with Embree 3 on the same CPU (same
+// triangles, same rays, same run) as the yardstick beside every figure.
+//
+//   geocold-bench [--device all|SPEC] [--scene cornell,bunny,dragon,large] [--quick] [--json]
+//                 [--repeats N] [--rays SIDE] [--no-path] [--no-rays] [--no-first-image]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "host/bvh/bvh.h"
+#include "host/cl/context.h"
+#include "host/cl/device.h"
+#include "host/util/error.h"
+#include "tools/bench/bench_scenes.h"
+#include "tools/bench/embree_bench.h"
+#include "tools/bench/first_image.h"
+#include "tools/bench/ocl_bench.h"
+#include "tools/bench/rays.h"
+
+namespace gc::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+
+// Anchors from issue 6 (measured independently; see the issue for conditions).
+constexpr double kMitsubaLlvmPerThread = 0.96e6; // Cornell 512x512, depth 8, 1 thread: 0.92-1.0 Msamples/s
+constexpr double kMitsubaCudaCornell = 221e6;    // H200, Cornell 512x512
+constexpr double kMitsubaCudaDragon = 410e6;     // H200, dragon under a constant environment, 320x240
+
+struct Options {
+    std::string device = "all";
+    std::vector<std::string> scenes;
+    bool quick = false;
+    bool json_out = false;
+    int repeats = 5;
+    int ray_side = 1024;
+    bool path = true;
+    bool rays = true;
+    bool first_image = true;
+    int first_image_child = -1;
+};
+
+double seconds_since(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v)
+{
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::vector<std::string> split(const std::string& s)
+{
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+Options parse(int argc, char** argv)
+{
+    Options o;
+    auto value = [&](int& i) -> std::string {
+        if (i + 1 >= argc) throw UsageError(std::string("geocold-bench: ") + argv[i] + " needs a value");
+        return argv[++i];
+    };
+    auto integer = [&](int& i) {
+        const std::string v = value(i);
+        char* end = nullptr;
+        const long n = std::strtol(v.c_str(), &end, 10);
+        if (!end || *end || n < 0 || n > 1 << 20)
+            throw UsageError(std::string("geocold-bench: ") + argv[i - 1] + " wants a non-negative integer, got '" + v + "'");
+        return static_cast<int>(n);
+    };
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--device") o.device = value(i);
+        else if (a == "--scene") o.scenes = split(value(i));
+        else if (a == "--quick") o.quick = true;
+        else if (a == "--json") o.json_out = true;
+        else if (a == "--repeats") o.repeats = std::max(1, integer(i));
+        else if (a == "--rays") o.ray_side = std::max(1, integer(i));
+        else if (a == "--no-path") o.path = false;
+        else if (a == "--no-rays") o.rays = false;
+        else if (a == "--no-first-image") o.first_image = false;
+        else if (a == "--first-image-child") o.first_image_child = integer(i);
+        else if (a == "--help" || a == "-h") {
+            std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
+                        "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
+                        "                     [--no-rays] [--no-first-image]\n");
+            std::exit(0);
+        } else {
+            throw UsageError("geocold-bench: unknown option '" + a + "' (see --help)");
+        }
+    }
+    if (o.quick) {
+        o.repeats = 1;
+        o.ray_side = std::min(o.ray_side, 64);
+        if (o.scenes.empty()) o.scenes = {"tiny"};
+    }
+    if (o.scenes.empty()) o.scenes = default_scene_names();
+    return o;
+}
+
+// Text goes to stdout, or to stderr when stdout carries the JSON document.
+FILE* g_text = stdout;
+
+void say(const char* format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    std::vfprintf(g_text, format, args);
+    va_end(args);
+    std::fflush(g_text);
+}
+
+std::string ratio(double ours, double theirs)
+{
+    if (!(theirs > 0.0) || !(ours > 0.0)) return "n/a";
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.2fx", ours / theirs);
+    return buffer;
+}
+
+double json_number(double v) { return std::isfinite(v) ? v : 0.0; }
+
+struct DeviceSlot {
+    int index = 0;
+    cl::DeviceInfo info;
+    std::unique_ptr<cl::Context> context;
+    double bandwidth = 0.0; // bytes/s, GPUs only
+    // Short: "[0] PoCL cpu"; the header line gives the full device name.
+    std::string label() const
+    {
+        const std::string& p = info.platform_name;
+        std::string s = "[";
+        s += std::to_string(index);
+        s += "] ";
+        s += p.find("Portable") != std::string::npos ? std::string("PoCL") : p.substr(0, p.find(' '));
+        s += " ";
+        s += info.type_name();
+        return s;
+    }
+};
+
+struct RayKind {
+    const char* name;
+    const std::vector<dev::GcRay>* rays;
+    bool any;
+};
+
+double agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b)
+{
+    if (a.empty() || a.size() != b.size()) return 0.0;
+    std::size_t same = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i];
+    return double(same) / double(a.size());
+}
+
+void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
+                const EmbreeTracer* embree, json& out)
+{
+    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const auto rays_start = Clock::now();
+    const int side = o.ray_side;
+    const RaySet set = make_rays(s.scene, bvh, s.camera, side, side, threads);
+    say("rays: %zu primary (%dx%d), %zu diffuse, %zu shadow (made in %.2f s)\n", set.primary.size(), side, side,
+        set.diffuse.size(), set.shadow.size(), seconds_since(rays_start));
+    const RayKind kinds[] = {{"primary", &set.primary, false}, {"diffuse", &set.diffuse, false}, {"shadow", &set.shadow, true}};
+
+    double embree_best[3] = {0, 0, 0};
+    std::vector<std::uint32_t> embree_result[3];
+    if (embree) {
+        for (int k = 0; k < 3; ++k) {
+            const RayKind& kind = kinds[k];
+            double best = 0.0;
+            std::string line;
+            for (int width : {1, 16}) {
+                std::vector<double> times;
+                std::vector<std::uint32_t> result;
+                for (int r = 0; r < o.repeats + 1; ++r) {
+                    const double t = kind.any ? embree->occluded(*kind.rays, threads, width, result)
+                                              : embree->closest(*kind.rays, threads, width, result);
+                    if (r > 0 || o.repeats == 1) times.push_back(t);
+                }
+                const double mrays = double(kind.rays->size()) / median(times) / 1e6;
+                out["rays"][kind.name]["embree"][width == 1 ? "single" : "packet16"] = json_number(mrays);
+                char buffer[96];
+                std::snprintf(buffer, sizeof buffer, "%s %.2f", width == 1 ? (kind.any ? "rtcOccluded1" : "rtcIntersect1")
+                                                                           : (kind.any ? "rtcOccluded16" : "rtcIntersect16"),
+                              mrays);
+                line += std::string(line.empty() ? "" : ", ") + buffer;
+                if (mrays > best) {
+                    best = mrays;
+                    embree_result[k] = result;
+                }
+            }
+            embree_best[k] = best;
+            out["rays"][kind.name]["embree"]["best"] = json_number(best);
+            say("  Embree %-7s (%d threads): %s Mrays/s\n", kind.name, threads, line.c_str());
+        }
+    }
+
+    bool have_cost = false;
+    TraversalCost cost[3];
+    for (DeviceSlot& d : devices) {
+        OclTracer tracer(*d.context, bvh);
+        const int repeats = d.info.is_gpu ? 4 * o.repeats : o.repeats;
+        for (int k = 0; k < 3; ++k) {
+            const RayKind& kind = kinds[k];
+            std::vector<std::uint32_t> result;
+            const std::vector<double> times =
+                kind.any ? tracer.occluded(*kind.rays, repeats, result) : tracer.closest(*kind.rays, repeats, result);
+            const double mrays = times.empty() ? 0.0 : double(kind.rays->size()) / median(times) / 1e6;
+            json& j = out["rays"][kind.name]["devices"][d.label()];
+            j["mrays_per_s"] = json_number(mrays);
+            std::string extra;
+            if (embree) {
+                const double agree = agreement(result, embree_result[k]);
+                j["ratio_to_embree"] = json_number(mrays / embree_best[k]);
+                j["agreement_with_embree"] = agree;
+                char buffer[96];
+                std::snprintf(buffer, sizeof buffer, " = %s Embree best; same result as Embree on %.3f%% of rays",
+                              ratio(mrays, embree_best[k]).c_str(), 100.0 * agree);
+                extra += buffer;
+            }
+            if (d.info.is_gpu && d.bandwidth > 0.0) {
+                if (!have_cost) {
+                    for (int c = 0; c < 3; ++c) cost[c] = traversal_cost(bvh, *kinds[c].rays, kinds[c].any, 65536);
+                    have_cost = true;
+                }
+                const double bytes = cost[k].bytes_per_ray();
+                const double bound = d.bandwidth / bytes / 1e6;
+                j["roofline"] = {{"bytes_per_ray", bytes}, {"inner_visits", cost[k].inner_visits},
+                                 {"triangle_tests", cost[k].triangle_tests}, {"bound_mrays_per_s", bound},
+                                 {"fraction", mrays / bound}};
+                char buffer[160];
+                std::snprintf(buffer, sizeof buffer,
+                              "; uncached roofline %.0f B/ray (%.1f inner, %.1f tris) -> %.0f Mrays/s bound, at %.1f%%",
+                              bytes, cost[k].inner_visits, cost[k].triangle_tests, bound, 100.0 * mrays / bound);
+                extra += buffer;
+            }
+            say("  %s %-7s: %.2f Mrays/s%s\n", d.label().c_str(), kind.name, mrays, extra.c_str());
+        }
+    }
+}
+
+json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, json& summary)
+{
+    json out;
+    const std::size_t tris = s.scene.triangle_count();
+    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    say("\n== scene %s: %zu triangles ==\n", s.name.c_str(), tris);
+    out["triangles"] = tris;
+
+    // ---- BVH build: ours vs Embree's binned SAH BVH2 (rtcBuildBVH) with the same constants.
+    const BvhBuildOptions build_options;
+    const int build_repeats = tris > 1000000 ? std::min(o.repeats, 3) : o.repeats;
+    std::vector<double> ours_build;
+    FlatBvh bvh;
+    for (int r = 0; r < build_repeats; ++r) {
+        bvh = build_bvh(s.scene, build_options);
+        ours_build.push_back(bvh.build_seconds);
+    }
+    const BvhStats stats = bvh_stats(bvh, build_options.traversal_cost, build_options.intersection_cost);
+    const double ours_build_s = median(ours_build);
+    const double ours_mtris = double(tris) / ours_build_s / 1e6;
+    say("BVH build  ours: %.3f s = %.2f Mtris/s, SAH %.2f, %zu nodes, depth %zu (%d threads)\n", ours_build_s, ours_mtris,
+        stats.sah_cost, stats.nodes, stats.max_depth, threads);
+    out["build"] = {{"seconds", ours_build_s}, {"mtris_per_s", ours_mtris}, {"sah", stats.sah_cost},
+                    {"nodes", stats.nodes}, {"depth", stats.max_depth}};
+
+    std::unique_ptr<EmbreeTracer> embree;
+    if (embree_available()) {
+        std::vector<double> times;
+        EmbreeBuildFigures fig;
+        for (int r = 0; r < build_repeats; ++r) {
+            fig = embree_build_bvh2(s.scene, build_options);
+            times.push_back(fig.bvh2_seconds);
+        }
+        const double e_s = median(times);
+        const double e_mtris = double(tris) / e_s / 1e6;
+        embree = std::make_unique<EmbreeTracer>(s.scene);
+        say("           Embree rtcBuildBVH BVH2: %.3f s = %.2f Mtris/s, SAH %.2f, %zu nodes | ours/Embree: speed %s, SAH %s\n",
+            e_s, e_mtris, fig.bvh2_sah, fig.bvh2_nodes, ratio(ours_mtris, e_mtris).c_str(),
+            ratio(stats.sah_cost, fig.bvh2_sah).c_str());
+        say("           Embree scene commit (its BVH4/8 for tracing): %.3f s = %.2f Mtris/s | ours/Embree speed %s\n",
+            embree->commit_seconds(), double(tris) / embree->commit_seconds() / 1e6,
+            ratio(ours_mtris, double(tris) / embree->commit_seconds() / 1e6).c_str());
+        out["build"]["embree_bvh2"] = {{"seconds", e_s}, {"mtris_per_s", e_mtris}, {"sah", fig.bvh2_sah},
+                                       {"nodes", fig.bvh2_nodes}};
+        out["build"]["embree_commit_seconds"] = embree->commit_seconds();
+        out["build"]["ratio_speed"] = ours_mtris / e_mtris;
+        out["build"]["ratio_sah"] = stats.sah_cost / fig.bvh2_sah;
+    } else {
+        say("           Embree: not built in (no yardstick)\n");
+    }
+
+    // ---- Rays: the same sets for Embree and every device.
+    if (o.rays) bench_rays(s, o, devices, bvh, embree.get(), out);
+
+    // ---- Path tracing: samples/s, no Russian roulette (rr_depth > max_depth).
+    if (o.path) {
+        RenderSettings settings;
+        settings.width = s.pt_width;
+        settings.height = s.pt_height;
+        settings.max_depth = 8;
+        settings.rr_depth = 9;
+        settings.env_radiance = s.env;
+        for (DeviceSlot& d : devices) {
+            const int samples = o.quick ? 1 : (d.info.is_gpu ? 20 : o.repeats);
+            const double budget = o.quick ? 0.0 : (d.info.is_gpu ? 5.0 : 20.0);
+            const PathFigures pf = path_samples(*d.context, s.scene, bvh, s.camera, settings, samples, budget);
+            const double sps = pf.pixels / median(pf.sample_seconds);
+            json& j = out["path"][d.label()];
+            j = {{"width", settings.width}, {"height", settings.height}, {"samples_per_s", sps},
+                 {"samples_timed", pf.sample_seconds.size()}, {"wavefront", pf.wavefront},
+                 {"device_bytes", pf.scene_bytes}, {"device_bytes_per_triangle", pf.scene_bytes / double(std::max<std::size_t>(tris, 1))}};
+            std::string anchor;
+            if (d.info.is_cpu && !d.info.is_gpu && (s.name == "cornell" || s.name == "tiny")) {
+                const double per_core = sps / std::max(1u, d.info.compute_units);
+                j["per_core"] = per_core;
+                j["ratio_mitsuba_llvm_per_thread"] = per_core / kMitsubaLlvmPerThread;
+                anchor = "; per core " + std::to_string(per_core / 1e6).substr(0, 6) + " M = " +
+                         ratio(per_core, kMitsubaLlvmPerThread) + " Mitsuba llvm_ad_rgb per thread (0.96 M)";
+            }
+            if (d.info.is_gpu && (s.name == "cornell" || s.name == "dragon")) {
+                const double mitsuba = s.name == "cornell" ? kMitsubaCudaCornell : kMitsubaCudaDragon;
+                j["ratio_mitsuba_cuda_h200"] = sps / mitsuba;
+                anchor = "; " + ratio(sps, mitsuba) + " Mitsuba cuda_ad_rgb on an H200 (" +
+                         std::to_string(int(mitsuba / 1e6)) + " M)";
+            }
+            say("  path %s: %dx%d depth 8, %.4f Msamples/s (median of %zu), wavefront %u, %.1f device bytes/triangle%s\n",
+                d.label().c_str(), settings.width, settings.height, sps / 1e6, pf.sample_seconds.size(), pf.wavefront,
+                pf.scene_bytes / double(std::max<std::size_t>(tris, 1)), anchor.c_str());
+            if (s.name == "cornell" || s.name == "tiny") summary["cornell_path"][d.info.is_gpu ? "gpu" : "cpu"] = sps;
+        }
+    }
+    return out;
+}
+
+int run(int argc, char** argv)
+{
+    const Options o = parse(argc, argv);
+    if (o.first_image_child >= 0) return first_image_child(o.first_image_child, o.quick);
+    if (o.json_out) g_text = stderr;
+
+    std::string why;
+    const std::vector<cl::DeviceInfo> all = cl::list_devices(&why);
+    if (all.empty()) throw DeviceError("geocold-bench: no OpenCL device found: " + why);
+    std::vector<DeviceSlot> devices;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (o.device != "all") {
+            const cl::DeviceInfo chosen = cl::select_device(o.device, all);
+            if (chosen.id != all[i].id) continue;
+        }
+        DeviceSlot slot;
+        slot.index = static_cast<int>(i);
+        slot.info = all[i];
+        slot.context = std::make_unique<cl::Context>(all[i]);
+        devices.push_back(std::move(slot));
+    }
+
+    json doc;
+    doc["embree"] = embree_available() ? embree_version() : "not built in";
+    doc["threads"] = std::thread::hardware_concurrency();
+    say("geocold-bench: %zu device(s), Embree %s, %u host threads%s\n", devices.size(),
+        embree_available() ? embree_version().c_str() : "not built in (no yardstick ratios)",
+        std::thread::hardware_concurrency(), o.quick ? ", quick" : "");
+    for (DeviceSlot& d : devices) {
+        if (d.info.is_gpu) d.bandwidth = copy_bandwidth(*d.context, std::size_t{1} << 30, o.quick ? 1 : 5);
+        say("  %s: %s (%s), %u compute units, work-group %zu%s\n", d.label().c_str(), d.info.device_name.c_str(), d.info.platform_name.c_str(), d.info.compute_units,
+            d.context->default_local_size(),
+            d.bandwidth > 0 ? (", copy bandwidth " + std::to_string(int(d.bandwidth / 1e9)) + " GB/s").c_str() : "");
+        doc["devices"][d.label()] = {{"type", d.info.type_name()}, {"compute_units", d.info.compute_units},
+                                     {"local_size", d.context->default_local_size()}, {"bandwidth", d.bandwidth}};
+    }
+
+    json summary;
+    const std::string shared = default_shared_dir();
+    for (const std::string& name : o.scenes) {
+        std::string missing;
+        const auto start = Clock::now();
+        std::optional<BenchScene> scene = load_bench_scene(name, shared, &missing);
+        if (!scene) {
+            say("\n== scene %s: skipped (%s) ==\n", name.c_str(), missing.c_str());
+            doc["scenes"][name] = {{"skipped", missing}};
+            continue;
+        }
+        const double load_s = seconds_since(start);
+        doc["scenes"][name] = bench_scene(*scene, o, devices, summary);
+        doc["scenes"][name]["load_seconds"] = load_s;
+    }
+
+    if (o.first_image) {
+        say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
+        for (DeviceSlot& d : devices) {
+            namespace fs = std::filesystem;
+            const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" +
+                                                                std::to_string(d.index));
+            fs::remove_all(root);
+            fs::create_directories(root);
+            const FirstImage cold = run_first_image(d.index, root.string(), o.quick);
+            const FirstImage warm = run_first_image(d.index, root.string(), o.quick);
+            fs::remove_all(root);
+            for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
+                if (!fi.ok) {
+                    say("  %s %s: failed: %s\n", d.label().c_str(), label, fi.error.c_str());
+                    continue;
+                }
+                say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back %.3f s\n",
+                    d.label().c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
+                    fi.compile_seconds, fi.render_seconds);
+                doc["first_image"][d.label()][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
+                                                         {"compile_seconds", fi.compile_seconds},
+                                                         {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache}};
+            }
+        }
+    }
+
+    if (summary.contains("cornell_path") && summary["cornell_path"].contains("gpu") &&
+        summary["cornell_path"].contains("cpu")) {
+        const double r = summary["cornell_path"]["gpu"].get<double>() / summary["cornell_path"]["cpu"].get<double>();
+        say("\nCornell path tracing GPU / CPU (this run): %.1fx\n", r);
+        summary["gpu_over_cpu"] = r;
+    }
+    doc["summary"] = summary;
+    if (o.json_out) std::printf("%s\n", doc.dump(2).c_str());
+    return 0;
+}
+
+}  // namespace
+}  // namespace gc::bench
+
+int main(int argc, char** argv)
+{
+    try {
+        return gc::bench::run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "geocold-bench: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,132 @@
+#include "tools/bench/ocl_bench.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "host/render/renderer.h"
+
+namespace gc::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+template <class T>
+cl::Buffer<T> upload_vector(const cl::Context& context, const std::vector<T>& data, const char* name)
+{
+    cl::Buffer<T> buffer = cl::Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, name);
+    buffer.write(data);
+    return buffer;
+}
+
+}  // namespace
+
+OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh)
+    : m_context(context),
+      m_program(context, "trace.cl"),
+      m_closest(m_program.kernel("trace_closest")),
+      m_any(m_program.kernel("trace_any")),
+      m_nodes(upload_vector(context, bvh.nodes, "bench bvh nodes")),
+      m_tris(upload_vector(context, bvh.triangles, "bench bvh triangles"))
+{
+}
+
+void OclTracer::upload(const std::vector<dev::GcRay>& rays)
+{
+    if (m_rays.count() < rays.size()) {
+        m_rays = cl::Buffer<dev::GcRay>::create(m_context, rays.size(), CL_MEM_READ_ONLY, "bench rays");
+        m_hits = cl::Buffer<dev::GcHit>::create(m_context, rays.size(), CL_MEM_WRITE_ONLY, "bench hits");
+        m_flags = cl::Buffer<std::uint32_t>::create(m_context, rays.size(), CL_MEM_WRITE_ONLY, "bench occlusion");
+    }
+    m_rays.write(rays);
+}
+
+std::vector<double> OclTracer::closest(const std::vector<dev::GcRay>& rays, int repeats,
+                                       std::vector<std::uint32_t>& prims)
+{
+    prims.assign(rays.size(), GC_INVALID);
+    std::vector<double> times;
+    if (rays.empty()) return times;
+    upload(rays);
+    const auto count = static_cast<std::uint32_t>(rays.size());
+    m_closest.set_args(m_nodes, m_tris, m_rays, m_hits, count);
+    m_closest.launch(m_context, count, 0, "benchmark closest hits");
+    m_context.finish();
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = Clock::now();
+        m_closest.launch(m_context, count, 0, "benchmark closest hits");
+        m_context.finish();
+        times.push_back(seconds_since(start));
+    }
+    std::vector<dev::GcHit> hits(rays.size());
+    m_hits.read(hits, 0);
+    for (std::size_t i = 0; i < hits.size(); ++i) prims[i] = hits[i].prim;
+    return times;
+}
+
+std::vector<double> OclTracer::occluded(const std::vector<dev::GcRay>& rays, int repeats,
+                                        std::vector<std::uint32_t>& flags)
+{
+    flags.assign(rays.size(), 0u);
+    std::vector<double> times;
+    if (rays.empty()) return times;
+    upload(rays);
+    const auto count = static_cast<std::uint32_t>(rays.size());
+    m_any.set_args(m_nodes, m_tris, m_rays, m_flags, count);
+    m_any.launch(m_context, count, 0, "benchmark any hits");
+    m_context.finish();
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = Clock::now();
+        m_any.launch(m_context, count, 0, "benchmark any hits");
+        m_context.finish();
+        times.push_back(seconds_since(start));
+    }
+    m_flags.read(flags, 0);
+    return times;
+}
+
+PathFigures path_samples(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+                         const RenderSettings& settings, int max_samples, double budget_seconds)
+{
+    PathFigures figures;
+    Renderer renderer(context, scene, bvh, camera, settings);
+    figures.pixels = double(settings.width) * double(settings.height);
+    figures.scene_bytes = double(renderer.device_scene().bytes());
+    figures.wavefront = renderer.wavefront_size();
+    renderer.render_sample(); // warm-up: PoCL builds its work-group functions on first launch
+    const auto begin = Clock::now();
+    for (int s = 0; s < max_samples; ++s) {
+        const auto start = Clock::now();
+        renderer.render_sample();
+        figures.sample_seconds.push_back(seconds_since(start));
+        if (seconds_since(begin) > budget_seconds) break;
+    }
+    return figures;
+}
+
+double copy_bandwidth(const cl::Context& context, std::size_t bytes, int repeats)
+{
+    bytes = std::min<std::size_t>(bytes, context.device().max_alloc / 4);
+    bytes &= ~std::size_t{255};
+    auto src = cl::Buffer<std::uint8_t>::create(context, bytes, CL_MEM_READ_WRITE, "bandwidth source");
+    auto dst = cl::Buffer<std::uint8_t>::create(context, bytes, CL_MEM_READ_WRITE, "bandwidth destination");
+    const std::uint8_t zero = 0;
+    GC_CL_WHAT("filling the bandwidth buffer", clEnqueueFillBuffer, context.queue(), src.mem(), &zero, 1, 0, bytes, 0,
+               nullptr, nullptr);
+    context.finish();
+    double best = 1e30;
+    for (int r = 0; r < repeats + 1; ++r) {
+        const auto start = Clock::now();
+        GC_CL_WHAT("copying for the bandwidth figure", clEnqueueCopyBuffer, context.queue(), src.mem(), dst.mem(), 0, 0,
+                   bytes, 0, nullptr, nullptr);
+        context.finish();
+        if (r > 0) best = std::min(best, seconds_since(start));
+    }
+    return 2.0 * double(bytes) / best;
+}
+
+}  // namespace gc::bench

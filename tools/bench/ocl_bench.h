@@ -1,0 +1,62 @@
+// The OpenCL half of the benchmark: ray throughput through kernels/trace.cl, path-traced
+// samples per second through the Renderer, time to first image in a fresh process, and the
+// device's copy bandwidth (the memory roofline's denominator).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gc_types.h"
+#include "host/bvh/flatten.h"
+#include "host/cl/buffer.h"
+#include "host/cl/context.h"
+#include "host/cl/kernel.h"
+#include "host/cl/program.h"
+#include "host/render/render_settings.h"
+#include "host/scene/scene.h"
+
+namespace gc::bench {
+
+// trace_closest / trace_any over device-resident ray buffers. Times are wall seconds of
+// launch + clFinish (rays and BVH uploaded beforehand, results not read back).
+class OclTracer {
+public:
+    OclTracer(const cl::Context& context, const FlatBvh& bvh);
+
+    double compile_seconds() const { return m_program.build_seconds(); }
+    // Uploads the rays, runs one untimed launch, then `repeats` timed ones; returns every
+    // timed duration. prims: the hit primitive (or the occlusion flag) of the last launch.
+    std::vector<double> closest(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& prims);
+    std::vector<double> occluded(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& flags);
+
+private:
+    void upload(const std::vector<dev::GcRay>& rays);
+
+    const cl::Context& m_context;
+    cl::Program m_program;
+    cl::Kernel m_closest;
+    cl::Kernel m_any;
+    cl::Buffer<dev::GcBvhNode> m_nodes;
+    cl::Buffer<dev::GcTriangle> m_tris;
+    cl::Buffer<dev::GcRay> m_rays;
+    cl::Buffer<dev::GcHit> m_hits;
+    cl::Buffer<std::uint32_t> m_flags;
+};
+
+struct PathFigures {
+    std::vector<double> sample_seconds; // one entry per timed sample (all pixels once)
+    double pixels = 0.0;
+    double scene_bytes = 0.0;           // DeviceScene::bytes()
+    std::uint32_t wavefront = 0;
+};
+// Path-traces `settings` (one warm-up sample, then up to max_samples timed samples, stopping
+// early once budget_seconds have passed).
+PathFigures path_samples(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+                         const RenderSettings& settings, int max_samples, double budget_seconds);
+
+// Device-to-device copy bandwidth in bytes per second (read + write counted), over a buffer
+// of `bytes` (capped at a quarter of the largest allocation).
+double copy_bandwidth(const cl::Context& context, std::size_t bytes, int repeats);
+
+}  // namespace gc::bench
