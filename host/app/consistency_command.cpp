@@ -151,6 +151,12 @@ ExitCode run_consistency(const Options& options)
     if (devices.empty()) run.notes.push_back("OpenCL: no device (" + why_none + ")");
     for (const cl::DeviceInfo& device : devices) {
         log_info("rendering on OpenCL: " + device.device_name + " (" + device.platform_name + ")");
+        // The kernels ask for correctly rounded division and sqrt where the device offers it
+        // (host/cl/program.h); elsewhere OpenCL allows 2.5 ulp (division) and 3 ulp (sqrt).
+        if (!device.correctly_rounded_div_sqrt)
+            run.notes.push_back(device.device_name +
+                                ": no correctly rounded division/sqrt (CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT): "
+                                "expect more differing pixels");
         const cl::Context context(device);
         Renderer renderer(context, scene, bvh, camera, settings);
         ConsistencyRender r;

@@ -3,16 +3,33 @@
 # geocold-cl with the carried .deps/ (tools/device/prepare-deps.sh) and OpenImageIO and
 # Vulkan switched off, lists the devices, and runs the unit and device tests.
 # Usage: tools/device/build-and-test.sh [extra ctest args]
+# BUILD_DIR overrides the build directory (default: build/bare, the `bare` preset's);
+# GEOCOLD_CMAKE_ARGS adds configure arguments (e.g. -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON to
+# rehearse a node without GoogleTest on a Debian machine).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
+build=${BUILD_DIR:-build/bare}
 [ -d .deps/include ] || { echo "missing .deps/: run tools/device/prepare-deps.sh on a Debian machine and carry it" >&2; exit 2; }
 
 opencl_lib=$(ldconfig -p | awk '/libOpenCL\.so(\.1)? /{print $NF; exit}')
 [ -n "$opencl_lib" ] || { echo "no libOpenCL (ICD loader) found" >&2; exit 4; }
 
-cmake --preset bare -DOpenCL_INCLUDE_DIR="$root/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
-      -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest"
-cmake --build --preset bare -j "$(nproc)"
-./build/bare/geocold-cl --list-devices
-ctest --test-dir build/bare --output-on-failure -L 'unit|device' "$@"
+# GoogleTest from the carried sources, built and installed once into the build directory so
+# that find_package(GTest) finds it. (The top level's GEOCOLD_GTEST_SOURCE_DIR fallback adds
+# GTest::gtest aliases that googletest >= 1.11 already defines, which CMake rejects.)
+mkdir -p "$build"
+build_abs=$(cd "$build" && pwd)
+gtest_prefix="$build_abs/_gtest/install"
+if [ ! -f "$gtest_prefix/lib/cmake/GTest/GTestConfig.cmake" ]; then
+  cmake -S "$root/.deps/googletest" -B "$build_abs/_gtest/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_INSTALL_PREFIX="$gtest_prefix" -DCMAKE_INSTALL_LIBDIR=lib -DBUILD_GMOCK=OFF -DINSTALL_GTEST=ON >/dev/null
+  cmake --build "$build_abs/_gtest/build" -j "$(nproc)" >/dev/null
+  cmake --install "$build_abs/_gtest/build" >/dev/null
+fi
+
+cmake --preset bare -B "$build" -DOpenCL_INCLUDE_DIR="$root/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
+      -DCMAKE_PREFIX_PATH="$gtest_prefix" -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest" ${GEOCOLD_CMAKE_ARGS:-}
+cmake --build "$build" -j "$(nproc)"
+"$build_abs/geocold-cl" --list-devices
+ctest --test-dir "$build_abs" --output-on-failure -L 'unit|device' "$@"

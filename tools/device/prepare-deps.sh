@@ -2,6 +2,9 @@
 # Copies the header-only dependencies (and GoogleTest's sources) from this Debian machine
 # into .deps/ of the repository, for a machine that has a compiler, CMake and an OpenCL
 # driver but no package manager (e.g. a lent GPU node). .deps/ is git-ignored; carry it.
+# The shared Cornell boxes (../shared/scenes/cornell-box: the shared scenes that have lights)
+# go to .deps/scenes/cornell-box when present, so tools/device/consistency.sh can check them
+# on a node that has only the repository.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 deps="$root/.deps"
@@ -12,4 +15,10 @@ cp /usr/include/tiny_obj_loader.h /usr/include/tiny_gltf.h "$deps/include/"
 mkdir -p "$deps/include/stb"
 cp /usr/include/stb/stb_image.h /usr/include/stb/stb_image_write.h "$deps/include/stb/"
 cp -r /usr/src/googletest "$deps/googletest"
+shared_boxes="${GEOCOLD_SHARED_DIR:-$root/../shared}/scenes/cornell-box"
+if [ -d "$shared_boxes" ]; then
+  mkdir -p "$deps/scenes/cornell-box"
+  cp "$shared_boxes"/*.obj "$shared_boxes"/*.mtl "$deps/scenes/cornell-box/"
+  cp "$shared_boxes"/README.md "$shared_boxes"/copyright.txt "$deps/scenes/cornell-box/" 2>/dev/null || true
+fi
 du -sh "$deps"
