@@ -118,6 +118,8 @@ public:
     {
         for (std::size_t i = 0; i < m_model.materials.size(); ++i)
             m_scene.materials.push_back(convert_material(m_model.materials[i], static_cast<int>(i)));
+        m_uv_sets.resize(m_model.materials.size(), 0);
+        for (std::size_t i = 0; i < m_model.materials.size(); ++i) m_uv_sets[i] = uv_set(m_model.materials[i], static_cast<int>(i));
     }
 
     void convert_scene(int scene_index)
@@ -286,13 +288,23 @@ private:
         const AccessorView pos = view(pos_it->second, Use::Position, where);
         const std::size_t nv = pos.count;
 
+        // One uv set per triangle reaches the device: the one the material's textures read
+        // (uv_set), TEXCOORD_0 when the primitive lacks it.
+        std::string uv_name = "TEXCOORD_0";
+        if (prim.material >= 0 && static_cast<std::size_t>(prim.material) < m_uv_sets.size() &&
+            m_uv_sets[static_cast<std::size_t>(prim.material)] != 0) {
+            const std::string wanted = "TEXCOORD_" + std::to_string(m_uv_sets[static_cast<std::size_t>(prim.material)]);
+            if (prim.attributes.count(wanted)) uv_name = wanted;
+            else log_warning(m_name + ": " + where + ": material " + std::to_string(prim.material) + " reads " + wanted +
+                             ", which the primitive lacks; TEXCOORD_0 used instead");
+        }
         std::optional<AccessorView> nrm, uv;
         if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) nrm = view(it->second, Use::Normal, where);
-        if (const auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) uv = view(it->second, Use::TexCoord, where);
+        if (const auto it = prim.attributes.find(uv_name); it != prim.attributes.end()) uv = view(it->second, Use::TexCoord, where);
         if (nrm && nrm->count != nv)
             fail(where + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " + std::to_string(nv));
         if (uv && uv->count != nv)
-            fail(where + ": TEXCOORD_0 has " + std::to_string(uv->count) + " elements, POSITION " + std::to_string(nv));
+            fail(where + ": " + uv_name + " has " + std::to_string(uv->count) + " elements, POSITION " + std::to_string(nv));
 
         std::optional<AccessorView> idx;
         if (prim.indices >= 0) idx = view(prim.indices, Use::Index, where);
@@ -454,15 +466,39 @@ private:
         }
     }
 
+    // The texture-coordinate set a material's textures read. The device stores one uv set per
+    // triangle, so a material whose textures name different sets gets the base colour's (else
+    // the first textured slot's), with a warning.
+    int uv_set(const tinygltf::Material& m, int index)
+    {
+        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+        const std::pair<int, int> slots[] = {{pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
+                                             {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord},
+                                             {m.normalTexture.index, m.normalTexture.texCoord},
+                                             {m.emissiveTexture.index, m.emissiveTexture.texCoord}};
+        int chosen = 0;
+        bool found = false;
+        bool mixed = false;
+        for (const auto& [tex, set] : slots) {
+            if (tex < 0) continue;
+            if (!found) chosen = set;
+            else if (set != chosen) mixed = true;
+            found = true;
+        }
+        if (chosen < 0 || chosen > 31)
+            fail("material " + std::to_string(index) + ": texCoord " + std::to_string(chosen) + " out of range");
+        if (mixed)
+            log_warning(m_name + ": material " + std::to_string(index) + ": its textures read different TEXCOORD sets; only one "
+                        "set per triangle is kept, so all use TEXCOORD_" + std::to_string(chosen));
+        return chosen;
+    }
+
     // Scene texture for glTF texture `index`, decoded once per colour space.
-    int texture(int index, int tex_coord, bool srgb, const std::string& where)
+    int texture(int index, int /*tex_coord: see uv_set*/, bool srgb, const std::string& where)
     {
         if (index < 0) return -1;
         if (static_cast<std::size_t>(index) >= m_model.textures.size())
             fail(where + ": texture " + std::to_string(index) + " out of range (" + std::to_string(m_model.textures.size()) + " textures)");
-        if (tex_coord != 0 && m_warned_texcoord.insert(index).second)
-            log_warning(m_name + ": " + where + ": texture " + std::to_string(index) + " uses TEXCOORD_" +
-                        std::to_string(tex_coord) + "; only TEXCOORD_0 is loaded, so it is used instead");
         const auto key = std::make_pair(index, srgb);
         if (const auto found = m_textures.find(key); found != m_textures.end()) return found->second;
 
@@ -515,7 +551,7 @@ private:
     std::optional<std::uint32_t> m_default;
     std::map<std::pair<int, bool>, int> m_textures;
     std::set<int> m_warned_modes;
-    std::set<int> m_warned_texcoord;
+    std::vector<int> m_uv_sets; // per glTF material: the TEXCOORD_n its textures read
 };
 
 // tinygltf's messages can quote bytes of a garbage file ("last read: '...'"): keep valid

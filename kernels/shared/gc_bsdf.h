@@ -22,10 +22,15 @@
  * probability over the sphere. A failed sample has flags == 0 and weight == 0.
  *
  * Two-sidedness: the references treat every non-dielectric surface as two-sided
- * (/work/shared/refs/README.md). Lambert, Phong, mirror and the PBR stub therefore mirror wo
+ * (/work/shared/refs/README.md). Lambert, Phong, mirror and PBR therefore mirror wo
  * and wi through the tangent plane when wo.z < 0, evaluate the upper-hemisphere BRDF, and
  * mirror the sampled wi back: the surface reflects on whichever side wo is, never transmits.
  * eval, pdf and sample all go through the same gc_bsdf_side / gc_bsdf_flip, so they agree.
+ * (PBR's KHR_materials_transmission lobe is the one exception: a delta lobe straight through.)
+ *
+ * GC_MAT_PBR is glTF 2.0's metallic-roughness model (spec appendix B): GGX microfacets, see
+ * the section below. The caller passes the textured base colour as `albedo` and folds the
+ * metallicRoughness texture into m.pbr (x metallic, y roughness) before calling.
  *
  * The dielectric is one-interface, non-symmetric: paths are traced from the camera, so
  * radiance crossing into a medium with relative index eta is scaled by 1/eta^2 (pbrt-v4,
@@ -145,6 +150,162 @@ GC_FUNC float gc_phong_pdf_upper(float p_spec, float exponent, float3 wo, float3
     return (1.0f - p_spec) * gc_cosine_hemisphere_pdf(wi.z) + p_spec * gc_phong_lobe_pdf(c, exponent);
 }
 
+/* ------------------------------------------------------------------ glTF metallic-roughness
+ *
+ * glTF 2.0 spec, appendix B (BRDF implementation), written as one BSDF:
+ *
+ *   f = (1 - metallic) * [ (1 - F_d) * ((1 - transmission) * base / pi  +  transmission * btdf)
+ *                          + F_d * spec ]
+ *     + metallic * F_m * spec
+ *   spec = D(h) G2(wo, wi) / (4 |n.wo| |n.wi|)                 (Cook & Torrance 1982)
+ *   F_d  = F0 + (1 - F0) (1 - |wo.h|)^5,  F0 = ((ior - 1) / (ior + 1))^2   (Schlick 1994;
+ *          0.04 for the default ior 1.5; KHR_materials_ior changes it)
+ *   F_m  = base + (1 - base) (1 - |wo.h|)^5                    (the metal's F0 is base colour)
+ *
+ * i.e. the spec's mix(dielectric_brdf, metal_brdf, metallic) with its fresnel_mix layering
+ * evaluated exactly (not the "c_diff = mix(base, 0, metallic)" shortcut). D is
+ * Trowbridge-Reitz / GGX with alpha = roughness^2 (Walter et al. 2007), G2 Smith's
+ * height-correlated masking-shadowing (Heitz 2014, "Understanding the Masking-Shadowing
+ * Function in Microfacet-Based BRDFs"). Every factor is symmetric in wo and wi (F uses
+ * wo.h = wi.h), so f is reciprocal. Single scattering: rough metals lose the energy of
+ * multiple bounces between microfacets (tests/bsdf/pbr_test.cpp states the figure).
+ *
+ * alpha is clamped to GC_PBR_MIN_ALPHA so that roughness 0 stays a (very sharp) non-delta
+ * lobe that next-event estimation and MIS still handle.
+ *
+ * KHR_materials_transmission (without KHR_materials_volume the surface is thin-walled: no
+ * refraction) is a DELTA lobe straight through the surface (wi = -wo), weight
+ * (1 - metallic) * transmission * (1 - F_d(|wo.z|)) * base, i.e. the smooth limit of the
+ * spec's btdf; a rough btdf is not modelled.
+ *
+ * Sampling: the lobe is chosen with probabilities proportional to estimates of each lobe's
+ * weight at wo (Fresnel at cos = wo.z, see gc_pbr_lobe_probs); the specular lobe samples the
+ * distribution of visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible
+ * Normals", JCGT 7(4)), the diffuse lobe the cosine. The density is the mixture of both. */
+
+#define GC_PBR_MIN_ALPHA 1.0e-3f
+
+GC_FUNC float gc_pbr_alpha(GcMaterial m)
+{
+    const float r = clamp(m.pbr.y, 0.0f, 1.0f);
+    return fmax(r * r, GC_PBR_MIN_ALPHA);
+}
+
+/* Dielectric F0 from KHR_materials_ior (emission.w); anything below 1 (or NaN) means the
+ * glTF default 1.5. */
+GC_FUNC float gc_pbr_f0(GcMaterial m)
+{
+    const float ior = m.emission.w >= 1.0f ? m.emission.w : 1.5f;
+    const float q = (ior - 1.0f) / (ior + 1.0f);
+    return q * q;
+}
+
+/* Schlick's (1 - cos)^5. */
+GC_FUNC float gc_schlick_weight(float cos_theta)
+{
+    const float x = clamp(1.0f - cos_theta, 0.0f, 1.0f);
+    const float x2 = x * x;
+    return x2 * x2 * x;
+}
+
+/* GGX normal distribution for a unit microfacet normal wm (wm.z > 0). Written with the
+ * tangential components (x^2 + y^2)/alpha^2 + z^2 rather than cos^2 (alpha^2 - 1) + 1, which
+ * cancels catastrophically near the peak when alpha is small. */
+GC_FUNC float gc_ggx_d(float3 wm, float alpha)
+{
+    const float a2 = alpha * alpha;
+    const float e = (wm.x * wm.x + wm.y * wm.y) / a2 + wm.z * wm.z;
+    return 1.0f / (GC_PI * a2 * e * e);
+}
+
+/* Smith's Lambda for GGX: (sqrt(1 + alpha^2 tan^2) - 1) / 2. */
+GC_FUNC float gc_ggx_lambda(float3 w, float alpha)
+{
+    const float z2 = w.z * w.z;
+    if (!(z2 > 0.0f)) return GC_FLOAT_MAX;
+    const float t2 = (w.x * w.x + w.y * w.y) / z2;
+    return 0.5f * (sqrt(1.0f + alpha * alpha * t2) - 1.0f);
+}
+
+GC_FUNC float gc_ggx_g1(float3 w, float alpha) { return 1.0f / (1.0f + gc_ggx_lambda(w, alpha)); }
+
+/* Height-correlated masking-shadowing. */
+GC_FUNC float gc_ggx_g2(float3 wo, float3 wi, float alpha)
+{
+    return 1.0f / (1.0f + gc_ggx_lambda(wo, alpha) + gc_ggx_lambda(wi, alpha));
+}
+
+/* A microfacet normal distributed as the normals visible from wo (wo.z > 0): density
+ * D_wo(wm) = G1(wo) max(0, wo.wm) D(wm) / wo.z (Heitz 2018). Stretch wo to the hemisphere
+ * configuration, sample the projected disk (the half facing away from wo squeezed towards
+ * the horizon), lift to the hemisphere and unstretch. */
+GC_FUNC float3 gc_ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2)
+{
+    const float3 vh = normalize(make_float3(alpha * wo.x, alpha * wo.y, wo.z));
+    const float len2 = vh.x * vh.x + vh.y * vh.y;
+    const float3 t1 = len2 > 0.0f ? make_float3(-vh.y, vh.x, 0.0f) * (1.0f / sqrt(len2)) : make_float3(1.0f, 0.0f, 0.0f);
+    const float3 t2 = cross(vh, t1);
+    const float r = sqrt(u1);
+    const float phi = 2.0f * GC_PI * u2;
+    const float p1 = r * cos(phi);
+    const float s = 0.5f * (1.0f + vh.z);
+    const float p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * (r * sin(phi));
+    const float3 nh = t1 * p1 + t2 * p2 + vh * sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2));
+    return normalize(make_float3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
+}
+
+/* Density of a reflected direction wi whose half vector was drawn by
+ * gc_ggx_sample_visible_normal: D_wo(wm) / (4 wo.wm) = G1(wo) D(wm) / (4 wo.z). */
+GC_FUNC float gc_ggx_reflection_pdf(float3 wo, float3 wi, float alpha)
+{
+    const float3 wm = normalize(wo + wi);
+    return gc_ggx_g1(wo, alpha) * gc_ggx_d(wm, alpha) / (4.0f * wo.z);
+}
+
+/* Probabilities (specular, diffuse, transmission) of choosing each lobe for wo.z = cos_o.
+ * Proportional to each lobe's weight with the Fresnel terms taken at cos_o (the half vector
+ * is unknown before sampling): specular (1 - metallic) F_d + metallic lum(F_m), diffuse and
+ * transmission (1 - metallic)(1 - F_d) lum(base), split by `transmission`. */
+GC_FUNC float3 gc_pbr_lobe_probs(GcMaterial m, float3 base, float cos_o)
+{
+    const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
+    const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
+    const float f0 = gc_pbr_f0(m);
+    const float sw = gc_schlick_weight(cos_o);
+    const float fd = f0 + (1.0f - f0) * sw;
+    const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
+    const float w_spec = (1.0f - metallic) * fd + metallic * fmax(gc_luminance(fm), 0.0f);
+    const float w_base = (1.0f - metallic) * (1.0f - fd) * fmax(gc_luminance(base), 0.0f);
+    const float w_diff = w_base * (1.0f - trans);
+    const float w_trans = w_base * trans;
+    const float sum = w_spec + w_diff + w_trans;
+    if (!(sum > 0.0f)) return make_float3(1.0f, 0.0f, 0.0f);
+    return make_float3(w_spec / sum, w_diff / sum, w_trans / sum);
+}
+
+/* Non-delta part of f for wo, wi both in the upper hemisphere. */
+GC_FUNC float3 gc_pbr_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
+{
+    const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
+    const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
+    const float alpha = gc_pbr_alpha(m);
+    const float f0 = gc_pbr_f0(m);
+    const float3 wm = normalize(wo + wi);
+    const float sw = gc_schlick_weight(dot(wo, wm));
+    const float fd = f0 + (1.0f - f0) * sw;
+    const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
+    const float3 fresnel = make_float3(fd, fd, fd) * (1.0f - metallic) + fm * metallic;
+    const float spec = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z);
+    const float3 diffuse = base * ((1.0f - metallic) * (1.0f - trans) * (1.0f - fd) * GC_INV_PI);
+    return diffuse + fresnel * spec;
+}
+
+GC_FUNC float gc_pbr_pdf_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
+{
+    const float3 p = gc_pbr_lobe_probs(m, base, wo.z);
+    return p.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_alpha(m)) + p.y * gc_cosine_hemisphere_pdf(wi.z);
+}
+
 /* ------------------------------------------------------------------ public API */
 
 /* Non-delta BSDF value f(wo, wi), cosine excluded. */
@@ -158,10 +319,9 @@ GC_FUNC float3 gc_bsdf_eval(GcMaterial m, float3 albedo, float3 wo, float3 wi)
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return zero;
     if (m.type == GC_MAT_PHONG)
         return gc_phong_eval_upper(albedo, GC_XYZ(m.specular), gc_phong_exponent(m), wo, wi);
-    /* GC_MAT_LAMBERT, the diffuse part of GC_MAT_MIRROR, and GC_MAT_PBR.
-     * TODO(GGX issue — glTF metallic-roughness BSDF, owned by a separate issue): GC_MAT_PBR
-     * falls back to Lambert with the base colour until that issue replaces this branch.
-     * Unknown types also get Lambert, the loaders' default material. */
+    if (m.type == GC_MAT_PBR) return gc_pbr_eval_upper(m, albedo, wo, wi);
+    /* GC_MAT_LAMBERT and the diffuse part of GC_MAT_MIRROR. Unknown types also get Lambert,
+     * the loaders' default material. */
     return albedo * GC_INV_PI;
 }
 
@@ -183,7 +343,8 @@ GC_FUNC float gc_bsdf_pdf(GcMaterial m, float3 albedo, float3 wo, float3 wi)
         if (p_spec < 0.0f) return 0.0f;
         return (1.0f - p_spec) * gc_cosine_hemisphere_pdf(wi.z);
     }
-    return gc_cosine_hemisphere_pdf(wi.z); /* Lambert, PBR stub (see gc_bsdf_eval) */
+    if (m.type == GC_MAT_PBR) return gc_pbr_pdf_upper(m, albedo, wo, wi);
+    return gc_cosine_hemisphere_pdf(wi.z); /* Lambert */
 }
 
 /* Non-delta sample: f and pdf_w come from gc_bsdf_eval / gc_bsdf_pdf for the chosen wi, so
@@ -233,6 +394,26 @@ GC_FUNC GcBsdfSample gc_dielectric_sample(GcMaterial m, float3 wo, float u0)
     return s;
 }
 
+/* The thin-walled transmission lobe of GC_MAT_PBR, chosen with probability p_trans: a delta
+ * straight through the surface (see the PBR section). */
+GC_FUNC GcBsdfSample gc_pbr_sample_transmission(GcMaterial m, float3 base, float3 wo, float p_trans)
+{
+    const float cos_o = fabs(wo.z);
+    if (!(cos_o > 0.0f)) return gc_bsdf_no_sample();
+    const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
+    const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
+    const float f0 = gc_pbr_f0(m);
+    const float fd = f0 + (1.0f - f0) * gc_schlick_weight(cos_o);
+    const float3 t = base * ((1.0f - metallic) * trans * (1.0f - fd));
+    GcBsdfSample s;
+    s.wi = -wo;
+    s.f = t * (1.0f / cos_o);
+    s.pdf_w = p_trans;
+    s.weight = t * (1.0f / p_trans);
+    s.flags = GC_BSDF_TRANSMISSION | GC_BSDF_SPECULAR;
+    return s;
+}
+
 /* Draws wi for wo; see the header comment for the meaning of the fields. */
 GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, float u0, float u1, float u2)
 {
@@ -266,8 +447,21 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
         } else {
             wi_up = gc_sample_cosine_hemisphere(u1, u2);
         }
+    } else if (m.type == GC_MAT_PBR) {
+        const float3 p = gc_pbr_lobe_probs(m, albedo, wo_up.z);
+        if (u0 < p.x) {
+            const float3 wm = gc_ggx_sample_visible_normal(wo_up, gc_pbr_alpha(m), u1, u2);
+            wi_up = wm * (2.0f * dot(wo_up, wm)) - wo_up;
+            /* Reflections off visible facets can still leave below the horizon: the sample
+             * fails, and gc_bsdf_pdf is zero there, so the density stays consistent. */
+            if (!(wi_up.z > 0.0f)) return gc_bsdf_no_sample();
+        } else if (p.z > 0.0f && u0 >= p.x + p.y) {
+            return gc_pbr_sample_transmission(m, albedo, wo, p.z);
+        } else {
+            wi_up = gc_sample_cosine_hemisphere(u1, u2);
+        }
     } else {
-        wi_up = gc_sample_cosine_hemisphere(u1, u2); /* Lambert, PBR stub */
+        wi_up = gc_sample_cosine_hemisphere(u1, u2); /* Lambert */
     }
     return gc_bsdf_finish_sample(m, albedo, wo, gc_bsdf_flip(wi_up, side));
 }

@@ -6,6 +6,11 @@
  * gc_shade_vertex, so the two make the same sampling decisions from the same random numbers
  * by construction, not by keeping two copies in sync.
  *
+ * Materials are evaluated here, not in gc_bsdf.h: base colour and alpha, metallicRoughness,
+ * normal and emissive textures at the hit's uv (gc_shade_base_color, gc_shade_material,
+ * gc_shade_normal, gc_shade_emission), and glTF alpha MASK / BLEND as a pass-through (see
+ * gc_shade_vertex).
+ *
  * Depth follows Mitsuba's convention: path.depth counts the segments traced so far, so the
  * camera ray's hit is shaded at depth 1, emission is counted up to max_depth segments, and
  * a vertex at depth d may add segment d + 1 (a shadow ray or a continuation) only when

@@ -66,7 +66,6 @@ std::vector<Case> non_delta_cases()
         {"mirror kd.4 ks.5 wo=30", make_material(GC_MAT_MIRROR, grey(0.4f), grey(0.5f)), dir_deg(30)},
         {"mirror kd.6 ks.2 wo=110 (back)", make_material(GC_MAT_MIRROR, make_float3(0.6f, 0.3f, 0.1f), grey(0.2f)),
          dir_deg(110)},
-        {"pbr stub wo=50", make_material(GC_MAT_PBR, make_float3(0.9f, 0.7f, 0.3f)), dir_deg(50)},
     };
 }
 
@@ -208,17 +207,6 @@ TEST(Bsdf, TwoSidedAndNoTransmission)
             }
         }
     }
-}
-
-TEST(Bsdf, PbrStubIsLambert)
-{
-    // TODO(GGX issue): replace when the metallic-roughness BSDF lands.
-    const GcMaterial pbr = make_material(GC_MAT_PBR, make_float3(0.9f, 0.5f, 0.1f));
-    const GcMaterial lam = make_material(GC_MAT_LAMBERT, make_float3(0.9f, 0.5f, 0.1f));
-    const float3 wo = dir_deg(35);
-    const float3 wi = dir_deg(60, 2.0f);
-    EXPECT_EQ(gc_bsdf_eval(pbr, kd_of(pbr), wo, wi), gc_bsdf_eval(lam, kd_of(lam), wo, wi));
-    EXPECT_EQ(gc_bsdf_pdf(pbr, kd_of(pbr), wo, wi), gc_bsdf_pdf(lam, kd_of(lam), wo, wi));
 }
 
 // Directional albedo rho(wo) = integral of f cos over wi, estimated as the mean sample

@@ -1,0 +1,198 @@
+// The shading-level material code of gc_path_vertex.h on the host: glTF alpha (MASK cut-off,
+// BLEND stochastic pass-through), normal maps in tangent space, the metallicRoughness
+// texture folded into the factors, and textured emission. One triangle in the z = 0 plane,
+// uv = (x, -y) so that dP/du = +x and "up the image" (-dP/dv) = +y.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "gc_path_vertex.h"
+
+namespace gc::dev {
+namespace {
+
+std::uint32_t rgba(int r, int g, int b, int a = 255)
+{
+    return static_cast<std::uint32_t>(r) | (static_cast<std::uint32_t>(g) << 8) | (static_cast<std::uint32_t>(b) << 16) |
+           (static_cast<std::uint32_t>(a) << 24);
+}
+
+struct OneTriangle {
+    std::vector<GcTriangleAttribs> attribs;
+    std::vector<GcMaterial> materials;
+    std::vector<GcTexture> textures;
+    std::vector<uint> texel_data;
+    std::vector<GcEmitter> emitter_data{GcEmitter{}};
+    std::vector<GcPointLight> point_light_data{GcPointLight{}};
+    std::vector<float4> env_pixel_data{float4(0.0f)};
+    std::vector<float> env_cdf{0.0f, 1.0f};
+
+    OneTriangle()
+    {
+        GcTriangleAttribs a{};
+        a.n0 = a.n1 = a.n2 = a.ng = make_float4(0, 0, 1, 0);
+        // Corners (-1,-1,0), (1,-1,0), (0,1,0) with uv = (x, -y).
+        a.uv01 = make_float4(-1.0f, 1.0f, 1.0f, 1.0f);
+        a.uv2_u = 0.0f;
+        a.uv2_v = -1.0f;
+        a.material = 0;
+        a.flags = GC_TRIF_HAS_UV;
+        a.tangent = make_float4(1, 0, 0, 1);
+        attribs.push_back(a);
+        GcMaterial m{};
+        m.type = GC_MAT_PBR;
+        m.albedo = make_float4(0.8f, 0.8f, 0.8f, 1.0f);
+        m.emission = make_float4(0, 0, 0, 1.5f);
+        m.pbr = make_float4(0.0f, 0.5f, 0.5f, 0.0f);
+        m.albedo_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = GC_INVALID;
+        materials.push_back(m);
+    }
+
+    // A 1x1 texture of one texel; returns its index.
+    uint add_texture(std::uint32_t texel, bool srgb)
+    {
+        textures.push_back({static_cast<uint>(texel_data.size()), 1u, 1u, srgb ? GC_TEXF_SRGB : 0u});
+        texel_data.push_back(texel);
+        return static_cast<uint>(textures.size() - 1);
+    }
+
+    GcVertexResult shade(std::uint32_t pixel, std::uint32_t depth = 0) const
+    {
+        const GcTriangleAttribs* attribs_ptr = attribs.data();
+        const GcMaterial* materials_ptr = materials.data();
+        const GcTexture* textures_ptr = textures.empty() ? nullptr : textures.data();
+        const uint* texels = texel_data.empty() ? nullptr : texel_data.data();
+        const GcEmitter* emitters = emitter_data.data();
+        const GcPointLight* point_lights = point_light_data.data();
+        const float4* env_pixels = env_pixel_data.data();
+        const float* env_marginal = env_cdf.data();
+        const float* env_conditional = env_cdf.data();
+        GcRenderParams params{};
+        params.env_radiance = make_float4(1, 1, 1, 0);
+        params.max_depth = 8;
+        params.rr_depth = 100;
+        params.integrator = GC_INTEGRATOR_PATH;
+        GcPathState path{};
+        path.throughput = make_float4(1, 1, 1, 0);
+        path.pixel = pixel;
+        path.depth = depth;
+        path.flags = 0u;
+        const GcRay ray = gc_make_ray(make_float3(0.1f, 0.2f, 1.0f), make_float3(0, 0, -1), 0.0f, GC_FLOAT_MAX);
+        GcHit hit{};
+        hit.t = 1.0f;
+        hit.u = 0.3f;
+        hit.v = 0.3f;
+        hit.prim = 0;
+        return gc_shade_vertex(attribs_ptr, materials_ptr, textures_ptr, texels, emitters, point_lights, env_pixels,
+                               env_marginal, env_conditional, params, path, ray, hit);
+    }
+};
+
+bool passed_through(const GcVertexResult& r)
+{
+    return (r.flags & GC_VERTEX_CONTINUE) != 0u && r.next.dir_tmax.z == -1.0f && r.next.dir_tmax.x == 0.0f &&
+           r.next.org_tmin.z < 0.0f && r.path.throughput.x == 1.0f && (r.path.flags & GC_PATH_SPECULAR) != 0u;
+}
+
+TEST(MaterialEval, AlphaMaskCutsOut)
+{
+    OneTriangle s;
+    s.materials[0].flags = GC_MATF_ALPHA_MASK;
+    s.materials[0].albedo.w = 0.3f; // below the cutoff 0.5
+    for (std::uint32_t px = 0; px < 64; ++px) {
+        const GcVertexResult r = s.shade(px);
+        ASSERT_TRUE(passed_through(r)) << px;
+        ASSERT_EQ(r.path.depth, 1u) << "a pass-through counts as a path segment";
+        ASSERT_EQ(r.flags & GC_VERTEX_SHADOW, 0u);
+    }
+    // Texture alpha multiplies the factor: 0.3 * 1 < 0.5 cut, 1.0 * 0.6 >= 0.5 stays.
+    s.materials[0].albedo.w = 1.0f;
+    s.materials[0].albedo_texture = s.add_texture(rgba(255, 255, 255, 153), true);
+    EXPECT_FALSE(passed_through(s.shade(3)));
+    s.texel_data[0] = rgba(255, 255, 255, 102);
+    EXPECT_TRUE(passed_through(s.shade(3)));
+    // At the last segment a transparent hit ends the path.
+    EXPECT_EQ(s.shade(3, 7).flags & GC_VERTEX_CONTINUE, 0u);
+}
+
+TEST(MaterialEval, AlphaBlendIsStochastic)
+{
+    OneTriangle s;
+    s.materials[0].flags = GC_MATF_ALPHA_BLEND;
+    s.materials[0].albedo.w = 0.25f;
+    const int n = 20000;
+    int through = 0;
+    for (int px = 0; px < n; ++px) through += passed_through(s.shade(static_cast<std::uint32_t>(px))) ? 1 : 0;
+    const double frac = static_cast<double>(through) / n;
+    const double sigma = std::sqrt(0.75 * 0.25 / n);
+    std::printf("[alpha] BLEND alpha 0.25: pass-through fraction %.4f (expected 0.75 +- %.4f)\n", frac, sigma);
+    EXPECT_NEAR(frac, 0.75, 5.0 * sigma);
+    // Opaque materials never pass.
+    s.materials[0].flags = 0u;
+    for (std::uint32_t px = 0; px < 200; ++px) ASSERT_FALSE(passed_through(s.shade(px)));
+}
+
+TEST(MaterialEval, NormalMapTangentSpace)
+{
+    OneTriangle s;
+    const GcMaterial& m = s.materials[0];
+    const GcTriangleAttribs& a = s.attribs[0];
+    const float3 n = make_float3(0, 0, 1);
+    // No texture: unchanged. Flat texel (128, 128, 255): ~unchanged.
+    EXPECT_EQ(gc_shade_normal(s.attribs.data(), s.materials.data(), nullptr, nullptr, nullptr, nullptr, nullptr,
+                              nullptr, nullptr, m, a, n, n, make_float2(0.3f, 0.3f)),
+              n);
+    s.materials[0].normal_texture = s.add_texture(rgba(128, 128, 255), false);
+    auto mapped = [&](std::uint32_t texel) {
+        s.texel_data[0] = texel;
+        return gc_shade_normal(s.attribs.data(), s.materials.data(), s.textures.data(), s.texel_data.data(), nullptr,
+                               nullptr, nullptr, nullptr, nullptr, s.materials[0], a, n, n, make_float2(0.3f, 0.3f));
+    };
+    const float3 flat = mapped(rgba(128, 128, 255));
+    EXPECT_NEAR(flat.z, 1.0f, 1e-4f);
+    // +X in the map tilts toward dP/du (+x); +Y toward "up the image" (+y here).
+    const float3 tx = mapped(rgba(218, 128, 218));
+    const float3 ty = mapped(rgba(128, 218, 218));
+    std::printf("[normal map] +X texel -> (%.3f %.3f %.3f), +Y texel -> (%.3f %.3f %.3f)\n", tx.x, tx.y, tx.z, ty.x,
+                ty.y, ty.z);
+    EXPECT_GT(tx.x, 0.4f);
+    EXPECT_NEAR(tx.y, 0.0f, 1e-2f);
+    EXPECT_GT(ty.y, 0.4f);
+    EXPECT_NEAR(ty.x, 0.0f, 1e-2f);
+    // Mirrored uv (w = -1) flips the bitangent.
+    s.attribs[0].tangent.w = -1.0f;
+    EXPECT_LT(mapped(rgba(128, 218, 218)).y, -0.4f);
+    // A texel pointing below the surface keeps the interpolated normal.
+    s.attribs[0].tangent.w = 1.0f;
+    EXPECT_EQ(mapped(rgba(255, 128, 0)), n);
+    for (const float3& v : {flat, tx, ty}) EXPECT_NEAR(glm::length(v), 1.0f, 1e-5f);
+}
+
+TEST(MaterialEval, MetallicRoughnessAndEmissionTextures)
+{
+    OneTriangle s;
+    s.materials[0].pbr = make_float4(0.5f, 0.8f, 0.5f, 0.0f);
+    s.materials[0].metallic_roughness_texture = s.add_texture(rgba(0, 128, 255), false); // G rough, B metal
+    const GcMaterial m = gc_shade_material(nullptr, s.materials.data(), s.textures.data(), s.texel_data.data(),
+                                           nullptr, nullptr, nullptr, nullptr, nullptr, s.materials[0],
+                                           make_float2(0.5f, 0.5f));
+    EXPECT_NEAR(m.pbr.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(m.pbr.y, 0.8f * 128.0f / 255.0f, 1e-6f);
+    // Emission: factor times the sRGB texel (sRGB 188 ~ linear 0.5).
+    s.materials[0].emission = make_float4(2.0f, 4.0f, 1.0f, 1.5f);
+    s.materials[0].emission_texture = s.add_texture(rgba(188, 255, 0), true);
+    const float3 e = gc_shade_emission(nullptr, s.materials.data(), s.textures.data(), s.texel_data.data(), nullptr,
+                                       nullptr, nullptr, nullptr, nullptr, s.materials[0], make_float2(0.5f, 0.5f));
+    EXPECT_NEAR(e.x, 2.0f * gc_srgb_to_linear_table[188], 1e-6f);
+    EXPECT_NEAR(e.y, 4.0f, 1e-6f);
+    EXPECT_EQ(e.z, 0.0f);
+    // gc_triangle_uv interpolates the corners' uvs.
+    const float2 uv = gc_triangle_uv(s.attribs[0], make_float3(0.2f, 0.3f, 0.5f));
+    EXPECT_NEAR(uv.x, 0.2f * -1.0f + 0.3f * 1.0f, 1e-6f);
+    EXPECT_NEAR(uv.y, 0.2f * 1.0f + 0.3f * 1.0f + 0.5f * -1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace gc::dev
