@@ -16,7 +16,7 @@ __kernel void generate(const GcRenderParams params,
                                pixel / params.width, jitter.x, jitter.y);
     GcPathState path;
     path.throughput = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
-    path.radiance = (float4)(0.0f);
+    path.radiance = (float4)(0.0f, 0.0f, 0.0f, 1.0f); /* w: eta^2 scale for Russian roulette */
     path.pixel = pixel;
     path.depth = 0u;
     path.flags = GC_PATH_SPECULAR; /* a camera ray sees emitters with full weight */

@@ -14,7 +14,7 @@
  * Depth follows Mitsuba's convention: path.depth counts the segments traced so far, so the
  * camera ray's hit is shaded at depth 1, emission is counted up to max_depth segments, and
  * a vertex at depth d may add segment d + 1 (a shadow ray or a continuation) only when
- * d < max_depth. A path starts with throughput (1, 1, 1, 0), radiance 0, depth 0 and
+ * d < max_depth. A path starts with throughput (1, 1, 1, 0), radiance (0, 0, 0, 1), depth 0 and
  * GC_PATH_SPECULAR (a camera ray sees emitters with full weight).
  *
  * Scene buffers come in through macros, as in gc_traverse.h. Defaults (OpenCL C and C++):
@@ -356,16 +356,24 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     const float4 r = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
     const GcBsdfSample bs = gc_bsdf_sample(m, albedo, wo, r.x, r.y, r.z);
     beta *= bs.weight;
+    /* Refraction scales radiance by 1/eta^2 (gc_bsdf.h); eta_scale undoes that for Russian
+     * roulette only, so a path inside glass is not killed for a factor that leaving the glass
+     * will restore (Mitsuba's path integrator and pbrt-v4 do the same). */
+    float eta_scale = path.radiance.w;
+    if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && m.type == GC_MAT_DIELECTRIC) {
+        const float eta = gc_dielectric_eta(m, wo);
+        eta_scale *= eta * eta;
+    }
     bool alive = bs.flags != 0u && (beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f);
     if (alive && path.depth >= params.rr_depth) {
         /* Russian roulette on the throughput's largest channel, capped so bright paths
          * still end sometimes (as Mitsuba's path integrator does). */
-        const float survive = fmin(fmax(beta.x, fmax(beta.y, beta.z)), 0.95f);
+        const float survive = fmin(fmax(beta.x, fmax(beta.y, beta.z)) * eta_scale, 0.95f);
         const float4 rr = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_ROULETTE), params.seed);
         if (rr.x >= survive) alive = false;
         else beta = beta / survive;
     }
-    path.radiance = gc_with_w(L, 0.0f);
+    path.radiance = gc_with_w(L, eta_scale);
     if (!alive) {
         res.path = path;
         return res;

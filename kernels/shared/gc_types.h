@@ -177,7 +177,8 @@ GC_STRUCT(GcRenderParams) {
 
 GC_STRUCT(GcPathState) {
     float4 throughput; /* rgb: path throughput; w: solid-angle pdf of the last BSDF sample */
-    float4 radiance;   /* rgb: radiance gathered so far; w: 0 */
+    float4 radiance;   /* rgb: radiance gathered so far; w: product of eta^2 over the
+                        * refractions so far (Russian roulette; 1 at the camera) */
     uint pixel;
     uint depth;        /* path segments traced so far */
     uint flags;        /* GC_PATH_* */

@@ -30,7 +30,7 @@ void main()
                               pixel / params.width, jitter.x, jitter.y);
     GcPathState path;
     path.throughput = vec4(1.0f, 1.0f, 1.0f, 0.0f);
-    path.radiance = vec4(0.0f);
+    path.radiance = vec4(0.0f, 0.0f, 0.0f, 1.0f); /* w: eta^2 scale for Russian roulette */
     path.pixel = pixel;
     path.depth = 0u;
     path.flags = GC_PATH_SPECULAR;
