@@ -1,0 +1,163 @@
+"""Turns triangle groups (obj_scene.py) and a view into a Mitsuba 3 scene.
+
+The material mapping is the conventions table of /work/shared/refs/README.md:
+  illum 0-2 (and 10)  Lambert with Kd (times map_Kd when present); Ks/Ns ignored
+  illum 3, 5 (and 8)  Kd/pi diffuse PLUS a perfect mirror of reflectance Ks (no Fresnel)
+  illum 4, 6, 7 (9)   smooth dielectric, interior IOR Ni, exterior 1.0
+  Ke != 0             one-sided area light of radiance Ke on top of the surface's BSDF
+  non-dielectrics     two-sided
+(illum 8, 9, 10 are not in the table; they follow geocold-cl's OBJ loader.)
+
+Mitsuba 3 has no additive BSDF, so the diffuse + mirror sum is a blendbsdf with weight w:
+    (1 - w) * diffuse(Kd / (1 - w)) + w * conductor(Ks / w) = Kd/pi + delta * Ks
+with `conductor` of material "none" (reflectance exactly 1, i.e. no Fresnel). w is the mirror's
+share of the luminance, lum(Ks) / (lum(Kd) + lum(Ks)), kept inside [max Ks, 1 - max Kd] so
+that neither scaled lobe exceeds 1 where that is possible. w only changes which lobe Mitsuba
+samples (the variance), not the BSDF.
+"""
+
+from __future__ import annotations
+
+import mitsuba as mi
+import numpy as np
+
+from obj_scene import TriangleGroup
+
+LAMBERT_ILLUM = {0, 1, 2, 10}
+MIRROR_ILLUM = {3, 5, 8}
+DIELECTRIC_ILLUM = {4, 6, 7, 9}
+
+
+def luminance(c) -> float:
+    # Rec. 709 / sRGB primaries, the renderer's working space.
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+
+
+def _rgb(c) -> dict:
+    return {"type": "rgb", "value": [float(x) for x in c]}
+
+
+def _diffuse_reflectance(material, scale: float = 1.0) -> dict:
+    kd = np.asarray(material.kd, dtype=np.float64) * scale
+    if material.map_kd is None:
+        return _rgb(kd)
+    if np.allclose(kd, 1.0):
+        return {"type": "bitmap", "filename": material.map_kd, "filter_type": "bilinear", "wrap_mode": "repeat"}
+    # Kd times the texture: Mitsuba has no product texture, so bake Kd into a linear copy.
+    bitmap = mi.Bitmap(material.map_kd).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+    data = np.array(bitmap) * kd.astype(np.float32)
+    return {"type": "bitmap", "bitmap": mi.Bitmap(data.astype(np.float32)), "raw": True, "filter_type": "bilinear",
+            "wrap_mode": "repeat"}
+
+
+def _channel_texture(path: str, channel: int, factor: float) -> dict:
+    # One linear channel of an image (glTF packs metallic in B and roughness in G), times the
+    # factor, as a float bitmap texture.
+    bitmap = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+    data = np.array(bitmap)[:, :, channel:channel + 1] * np.float32(factor)
+    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(data, dtype=np.float32)), "raw": True,
+            "filter_type": "bilinear", "wrap_mode": "repeat"}
+
+
+def principled_bsdf(material) -> dict:
+    """glTF metallic-roughness as Mitsuba's principled BSDF (make_reference.py --pbr).
+
+    base_color = baseColorFactor x texture, metallic = factor x B, roughness = factor x G,
+    specular 0.5 (Mitsuba maps it to eta 1.5, i.e. F0 0.04 as glTF), normal map through
+    `normalmap`, two-sided like every non-dielectric here. Convention differences that remain
+    (README.md): principled's diffuse is Disney's (retro-reflection grows with roughness) and not
+    weighted by 1 - F; its dielectric Fresnel is exact, not Schlick's.
+    """
+    bsdf = {"type": "principled", "base_color": _diffuse_reflectance(material), "specular": 0.5,
+            "metallic": float(material.metallic), "roughness": float(material.roughness)}
+    if material.map_mr is not None:
+        bsdf["metallic"] = _channel_texture(material.map_mr, 2, material.metallic)
+        bsdf["roughness"] = _channel_texture(material.map_mr, 1, material.roughness)
+    if material.map_norm is not None:
+        bsdf = {"type": "normalmap", "bsdf": bsdf,
+                "normalmap": {"type": "bitmap", "filename": material.map_norm, "raw": True,
+                              "filter_type": "bilinear", "wrap_mode": "repeat"}}
+    return {"type": "twosided", "bsdf": bsdf}
+
+
+def material_bsdf(material) -> dict:
+    if material.pbr:
+        return principled_bsdf(material)
+    if material.illum in DIELECTRIC_ILLUM:
+        return {"type": "dielectric", "int_ior": float(material.ni), "ext_ior": 1.0}
+    kd = np.asarray(material.kd, dtype=np.float64)
+    ks = np.asarray(material.ks, dtype=np.float64)
+    if material.illum in MIRROR_ILLUM and ks.max() > 0:
+        mirror = {"type": "conductor", "material": "none"}
+        if kd.max() <= 0 and material.map_kd is None:
+            bsdf = dict(mirror, specular_reflectance=_rgb(ks))
+        else:
+            lum_d, lum_s = luminance(kd), luminance(ks)
+            w = lum_s / (lum_d + lum_s) if lum_d + lum_s > 0 else 0.5
+            lo, hi = ks.max(), 1.0 - kd.max()
+            if lo <= hi:
+                w = min(max(w, lo), hi)
+            w = min(max(w, 1e-4), 1.0 - 1e-4)
+            bsdf = {
+                "type": "blendbsdf",
+                "weight": float(w),
+                "bsdf_0": {"type": "diffuse", "reflectance": _diffuse_reflectance(material, 1.0 / (1.0 - w))},
+                "bsdf_1": dict(mirror, specular_reflectance=_rgb(ks / w)),
+            }
+    else:
+        if material.illum not in LAMBERT_ILLUM and material.illum not in MIRROR_ILLUM:
+            print(f"warning: material {material.name}: illum {material.illum} not supported; using Lambert")
+        bsdf = {"type": "diffuse", "reflectance": _diffuse_reflectance(material)}
+    return {"type": "twosided", "bsdf": bsdf}
+
+
+def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
+    props = mi.Properties()
+    props["bsdf"] = mi.load_dict(material_bsdf(group.material))
+    if max(group.material.ke) > 0:
+        # Mitsuba's area light is one-sided: it emits on the side the triangle's normal
+        # (counter-clockwise winding) faces, as the convention asks.
+        props["emitter"] = mi.load_dict({"type": "area", "radiance": _rgb(group.material.ke)})
+    n_vertices = len(group.positions)
+    mesh = mi.Mesh(name, n_vertices, n_vertices // 3, props, True, group.uvs is not None)
+    params = mi.traverse(mesh)
+
+    def put(key, array):
+        params[key] = type(params[key])(np.ascontiguousarray(array).ravel())
+
+    put("vertex_positions", group.positions.astype(np.float32))
+    put("faces", np.arange(n_vertices, dtype=np.uint32))
+    put("vertex_normals", group.normals.astype(np.float32))
+    if group.uvs is not None:
+        put("vertex_texcoords", group.uvs.astype(np.float32))
+    params.update()
+    return mesh
+
+
+def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0) -> mi.Scene:
+    width, height = camera["res"]
+    scene = {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": int(max_depth)},
+        "sensor": {
+            "type": "perspective",
+            "fov": float(camera["fov"]),
+            "fov_axis": "y",
+            "to_world": mi.ScalarTransform4f().look_at(
+                origin=camera["look_from"], target=camera["look_at"], up=camera.get("up", [0.0, 1.0, 0.0])
+            ),
+            "sampler": {"type": "independent", "seed": int(seed)},
+            "film": {
+                "type": "hdrfilm",
+                "width": int(width),
+                "height": int(height),
+                "pixel_format": "rgb",
+                "rfilter": {"type": "box"},
+            },
+        },
+    }
+    if env is not None and max(env) > 0:
+        scene["environment"] = {"type": "constant", "radiance": _rgb(env)}
+    for i, group in enumerate(groups):
+        scene[f"mesh_{i:03d}"] = group_mesh(f"mesh_{i:03d}_{group.material.name}", group)
+    return mi.load_dict(scene)
