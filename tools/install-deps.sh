@@ -16,6 +16,9 @@ packages=(
     libvulkan-dev mesa-vulkan-drivers glslc glslang-tools
     # Benchmark yardstick only
     libembree-dev
+    # Fuzzing only (tools/fuzz, tools/ci/robustness.sh): clang; libclang-common-15-dev holds
+    # the libFuzzer and sanitizer runtimes (libclang_rt.fuzzer-x86_64.a)
+    clang-15 libclang-common-15-dev
 )
 
 sudo_cmd=()

@@ -233,7 +233,16 @@ private:
         v.normalized = a.normalized;
         const std::size_t element = static_cast<std::size_t>(v.components) *
                                     static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
-        if (a.bufferView < 0) return v;  // spec: no bufferView means all zeros
+        if (a.bufferView < 0) {
+            // The spec allows an accessor with no bufferView: all zeros. Its count is not bounded
+            // by any bytes in the file, so a hostile count would make us allocate without limit
+            // (found by fuzz_gltf): accept only what a real mesh could need.
+            constexpr std::size_t kMaxZeroElements = std::size_t{1} << 24;
+            if (a.count > kMaxZeroElements)
+                fail(ctx + "has no bufferView (all zeros) but claims " + std::to_string(a.count) +
+                     " elements; more than " + std::to_string(kMaxZeroElements) + " is refused");
+            return v;
+        }
         if (static_cast<std::size_t>(a.bufferView) >= m_model.bufferViews.size())
             fail(ctx + "bufferView " + std::to_string(a.bufferView) + " out of range (" +
                  std::to_string(m_model.bufferViews.size()) + " bufferViews)");

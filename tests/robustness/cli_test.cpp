@@ -1,0 +1,150 @@
+// The command line against a hostile user: bad options, bad output paths, a full disk.
+#include <cstdio>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "process.h"
+
+namespace gc::test {
+namespace {
+
+const std::filesystem::path k_cornell = std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Original.obj";
+
+void show(const char* what, const RunResult& r)
+{
+    std::string shown = r.err;
+    while (!shown.empty() && shown.back() == '\n') shown.pop_back();
+    std::printf("  %s -> %s (%.2f s)\n    %s\n", what, r.describe().c_str(), r.seconds, shown.c_str());
+}
+
+struct BadArgs {
+    std::vector<std::string> args;
+    std::string message;
+};
+
+TEST(Cli, BadOptionsAreUsageErrors)
+{
+    const std::string scene = k_cornell.string();
+    const std::vector<BadArgs> cases = {
+        {{scene, "--frobnicate"}, "unknown option '--frobnicate'"},
+        {{scene, "--spp", "0"}, "--spp expects an integer in [1, 16777216], got '0'"},
+        {{scene, "--spp", "-3"}, "--spp expects an integer in [1, 16777216], got '-3'"},
+        {{scene, "--spp", "99999999999999999999999"}, "--spp expects an integer"},
+        {{scene, "--spp=1e3"}, "--spp expects an integer"},
+        {{scene, "--res", "0x0"}, "--res expects an integer in [1, 16384], got '0'"},
+        {{scene, "--res", "100000x1"}, "--res expects an integer in [1, 16384], got '100000'"},
+        {{scene, "--res", "512"}, "--res expects WIDTHxHEIGHT"},
+        {{scene, "--width", "-1"}, "--width expects an integer"},
+        {{scene, "--max-depth", "0"}, "--max-depth expects an integer in [1, 1024]"},
+        {{scene, "--fov", "180"}, "--fov expects a vertical field of view in (0, 180) degrees"},
+        {{scene, "--env", "1,nan,1"}, "--env expects a finite number"},
+        {{scene, "--time-limit", "-1"}, "--time-limit expects a positive number of seconds"},
+        {{scene, "--wavefront-size", "1"}, "--wavefront-size expects an integer in [1024,"},
+        {{scene, "--up", "0,0,0"}, "--up must not be the zero vector"},
+        {{scene, "--spp"}, "--spp needs a value"},
+        {{scene, scene}, "more than one scene given"},
+        {{}, "no scene given"},
+    };
+    for (const BadArgs& c : cases) {
+        const RunResult r = run_process(cli_path(), c.args, cli_options());
+        std::string what = "geocold-cl";
+        for (const std::string& a : c.args) what += " " + (a == scene ? std::string("SCENE") : a);
+        show(what.c_str(), r);
+        EXPECT_EQ(r.signal, 0) << what;
+        EXPECT_EQ(r.exit_code, 2) << what << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << "expected '" << c.message << "' in: " << r.err;
+        EXPECT_NE(r.err.find("Try 'geocold-cl --help'"), std::string::npos) << r.err;
+        EXPECT_LT(r.seconds, 10.0) << "a usage error must not touch devices or scenes";
+    }
+}
+
+TEST(Cli, HelpDocumentsExitCodes)
+{
+    const RunResult r = run_process(cli_path(), {"--help"}, cli_options());
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* line : {"2 bad command line", "3 unreadable or malformed input file", "4 no usable device",
+                             "5 output could not be written", "130 interrupted (partial image written)"})
+        EXPECT_NE(r.out.find(line), std::string::npos) << line;
+}
+
+TEST(Cli, MissingOutputFolderFailsBeforeLoadingOrRendering)
+{
+    const TempDir dir;
+    const std::string output = (dir / "no/such/folder/out.png").string();
+    // Hours of work requested: only an early check can make this fast. The scene does not even
+    // exist: the output is checked first, so the answer is about the output (exit 5).
+    for (const std::string& scene : {k_cornell.string(), (dir / "missing.obj").string()}) {
+        const RunResult r = run_process(cli_path(), {scene, "--spp", "1000000", "--res", "4096x4096", "-o", output},
+                                        cli_options());
+        show("-o no/such/folder/out.png", r);
+        EXPECT_EQ(r.exit_code, 5) << r.err;
+        EXPECT_NE(r.err.find(output), std::string::npos) << r.err;
+        EXPECT_EQ(r.count_err_lines("error:"), 1) << r.err;
+        EXPECT_LT(r.seconds, 5.0);
+    }
+    EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Cli, OutputPathIsAFolder)
+{
+    const TempDir dir;
+    std::filesystem::create_directories(dir / "image.png");
+    const RunResult r = run_process(cli_path(), {k_cornell.string(), "--spp", "1000000", "-o", (dir / "image.png").string()},
+                                    cli_options());
+    show("-o <a folder>", r);
+    EXPECT_EQ(r.exit_code, 5) << r.err;
+    EXPECT_NE(r.err.find("image.png"), std::string::npos) << r.err;
+    EXPECT_LT(r.seconds, 5.0);
+    EXPECT_TRUE(std::filesystem::is_directory(dir / "image.png"));
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{"image.png"});
+}
+
+TEST(Cli, UnsupportedOutputFormatLeavesExistingFileAlone)
+{
+    const TempDir dir;
+    const std::filesystem::path target = dir / "image.xyz";
+    write_file(target, "precious previous contents\n");
+    const RunResult r = run_process(cli_path(), {k_cornell.string(), "--spp", "1000000", "-o", target.string()}, cli_options());
+    show("-o image.xyz", r);
+    EXPECT_EQ(r.exit_code, 5) << r.err;
+    EXPECT_NE(r.err.find("image.xyz"), std::string::npos) << r.err;
+    EXPECT_LT(r.seconds, 5.0);
+    EXPECT_EQ(read_file(target), "precious previous contents\n");
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{"image.xyz"});
+}
+
+// A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the
+// write fails after the render, and the previous image must survive byte for byte.
+TEST(Cli, FullDiskKeepsThePreviousImage)
+{
+    if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
+    const TempDir dir;
+    const std::vector<std::string> render = {k_cornell.string(), "--spp", "1", "--res", "32x32", "--device", "cpu"};
+    // Warm-up with the same settings, so neither our kernel cache nor the driver's needs to
+    // write a file while the limit is on (that would fail for the wrong reason).
+    std::vector<std::string> args = render;
+    args.insert(args.end(), {"-o", (dir / "warmup.pfm").string()});
+    const RunResult warm = run_process(cli_path(), args, cli_options());
+    ASSERT_EQ(warm.exit_code, 0) << warm.err;
+    std::filesystem::remove(dir / "warmup.pfm");
+
+    const std::filesystem::path target = dir / "image.pfm";
+    const std::string previous = "PF\n1 1\n-1.0\n" + std::string(12, '\x01');
+    write_file(target, previous);
+    RunOptions options = cli_options();
+    options.max_file_size = 1024;  // a 32x32 PFM is 12 KiB
+    args = render;
+    args.insert(args.end(), {"-o", target.string()});
+    const RunResult r = run_process(cli_path(), args, options);
+    show("full disk (RLIMIT_FSIZE 1 KiB) -o image.pfm", r);
+    EXPECT_EQ(r.signal, 0) << r.describe();
+    EXPECT_EQ(r.exit_code, 5) << r.err;
+    EXPECT_NE(r.err.find(target.string()), std::string::npos) << r.err;
+    EXPECT_EQ(r.count_err_lines("error:"), 1) << r.err;
+    EXPECT_EQ(read_file(target), previous) << "the previous image was damaged";
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{"image.pfm"}) << "temp files left behind";
+}
+
+}  // namespace
+}  // namespace gc::test
