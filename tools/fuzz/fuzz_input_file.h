@@ -3,6 +3,7 @@
 // loaders' real file-reading code is what gets fuzzed without touching the disk.
 #pragma once
 
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include <signal.h>
 #include <unistd.h>
 
 namespace gc::fuzz {
@@ -21,6 +23,7 @@ public:
         std::error_code ec;
         std::filesystem::path root = "/dev/shm";
         if (!std::filesystem::is_directory(root, ec)) root = std::filesystem::temp_directory_path();
+        remove_stale(root);
         m_dir = root / ("geocold-fuzz-" + std::to_string(::getpid()));
         std::filesystem::create_directories(m_dir);
         m_path = m_dir / file_name;
@@ -46,6 +49,19 @@ public:
     }
 
 private:
+    // A run that crashed (the point of fuzzing) never removes its folder: remove those whose
+    // process is gone.
+    static void remove_stale(const std::filesystem::path& root)
+    {
+        std::error_code ec;
+        for (const auto& e : std::filesystem::directory_iterator(root, ec)) {
+            const std::string name = e.path().filename().string();
+            if (name.rfind("geocold-fuzz-", 0) != 0) continue;
+            const long pid = std::strtol(name.c_str() + 13, nullptr, 10);
+            if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove_all(e.path(), ec);
+        }
+    }
+
     std::filesystem::path m_dir;
     std::filesystem::path m_path;
 };
