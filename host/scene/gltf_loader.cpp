@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -14,6 +12,8 @@
 
 #include "host/math/transform.h"
 #include "host/scene/glb_check.h"
+#include "host/scene/gltf_images.h"
+#include "host/scene/scene_file.h"
 #include "host/scene/texture_io.h"
 #include "host/scene/triangle_sink.h"
 #include "host/util/error.h"
@@ -24,17 +24,6 @@ namespace gc {
 namespace {
 
 constexpr double k_pi = 3.14159265358979323846;
-
-std::vector<unsigned char> read_binary_file(const std::filesystem::path& path)
-{
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": file not found");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open file");
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path.string() + ": read error");
-    return bytes;
-}
 
 // A validated view of an accessor's elements inside its buffer.
 struct AccessorView {
@@ -310,6 +299,12 @@ private:
         std::optional<AccessorView> nrm, uv;
         if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) nrm = view(it->second, Use::Normal, where);
         if (const auto it = prim.attributes.find(uv_name); it != prim.attributes.end()) uv = view(it->second, Use::TexCoord, where);
+        // The device keeps one tangent per triangle, derived from positions and uvs
+        // (host/render/scene_convert.cpp); a file's per-vertex TANGENT is not stored.
+        if (prim.attributes.count("TANGENT") && !m_warned_tangent) {
+            m_warned_tangent = true;
+            log_warning(m_name + ": " + where + ": TANGENT is ignored; tangents are generated per triangle from the uvs");
+        }
         if (nrm && nrm->count != nv)
             fail(where + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " + std::to_string(nv));
         if (uv && uv->count != nv)
@@ -462,6 +457,14 @@ private:
         out.albedo_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, where);
         out.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false, where);
         out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, false, where);
+        out.normal_scale = static_cast<float>(m.normalTexture.scale);
+        if (!std::isfinite(out.normal_scale)) fail(where + ": non-finite normalTexture.scale");
+        // What the renderer does not model is said once per material, not silently dropped.
+        if (m.occlusionTexture.index >= 0)
+            log_warning(m_name + ": " + where + ": occlusionTexture is ignored (a path tracer computes occlusion)");
+        for (const auto& [ext, unused] : m.extensions)
+            if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_ior" && ext != "KHR_materials_transmission")
+                log_warning(m_name + ": " + where + ": extension " + ext + " is not supported; ignored");
         out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, where);
         return out;
     }
@@ -517,6 +520,9 @@ private:
                  std::to_string(m_model.images.size()) + " images)");
         const tinygltf::Image& img = m_model.images[static_cast<std::size_t>(tex.source)];
         const std::string img_name = "image " + std::to_string(tex.source) + (img.uri.empty() ? "" : " '" + img.uri + "'");
+        // tinygltf only warns when an external image is missing or unreadable and leaves it empty.
+        if (img.image.empty() && !img.uri.empty())
+            fail(img_name + ": file not found or unreadable (looked for it next to the scene file)");
         if (img.width <= 0 || img.height <= 0 || img.component < 1 || img.component > 4 || (img.bits != 8 && img.bits != 16))
             fail(img_name + ": not decoded (" + std::to_string(img.width) + "x" + std::to_string(img.height) + ", " +
                  std::to_string(img.component) + " channels, " + std::to_string(img.bits) + " bits)");
@@ -560,6 +566,7 @@ private:
     std::optional<std::uint32_t> m_default;
     std::map<std::pair<int, bool>, int> m_textures;
     std::set<int> m_warned_modes;
+    bool m_warned_tangent = false; // TANGENT is reported once per file
     std::vector<int> m_uv_sets; // per glTF material: the TEXCOORD_n its textures read
 };
 
@@ -601,7 +608,7 @@ void forward_warnings(const std::string& warn, const std::string& name)
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
 {
     const std::string name = path.string();
-    const std::vector<unsigned char> bytes = read_binary_file(path);
+    const std::vector<unsigned char> bytes = read_regular_file(path);
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw InputError(name + ": larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     std::string ext = path.extension().string();
@@ -611,6 +618,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
 
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
+    install_checked_image_decoder(loader, model);
     std::string err, warn;
     const std::string base_dir = path.parent_path().empty() ? std::string(".") : path.parent_path().string();
     const unsigned int size = static_cast<unsigned int>(bytes.size());

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <exception>
 #include <map>
 #include <set>
 #include <sstream>
@@ -12,6 +12,7 @@
 
 #include "host/scene/energy_conservation.h"
 #include "host/scene/obj_validate.h"
+#include "host/scene/scene_file.h"
 #include "host/scene/texture_io.h"
 #include "host/scene/triangle_sink.h"
 #include "host/util/error.h"
@@ -23,32 +24,44 @@ namespace {
 
 std::string read_text_file(const std::filesystem::path& path)
 {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": file not found");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError(path.string() + ": read error");
-    return ss.str();
+    const std::vector<unsigned char> bytes = read_regular_file(path);
+    return std::string(bytes.begin(), bytes.end());
 }
 
 // Opens mtllib files relative to the .obj's folder with std::filesystem (tinyobjloader's own
-// reader splits its search path at ':'), and remembers which .mtl defined each material.
+// reader splits its search path at ':'), validates their numbers (tinyobjloader reads "nan" and
+// garbage as 0), and remembers which .mtl defined each material. An error cannot be thrown
+// through tinyobjloader, so it is kept and rethrown by load_obj.
 class MtlReader : public tinyobj::MaterialReader {
 public:
-    explicit MtlReader(std::filesystem::path dir) : m_dir(std::move(dir)) {}
+    MtlReader(std::filesystem::path dir, std::string obj_name) : m_dir(std::move(dir)), m_obj_name(std::move(obj_name)) {}
 
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* material_map, std::string* warn, std::string* err) override
     {
         const std::filesystem::path file = m_dir / name;
-        std::ifstream in(file);
-        if (!in) return false;  // load_obj has warned already
+        // Only regular files: a library named /dev/stdin or a FIFO would block forever.
+        if (!why_not_regular_file(file).empty()) return false;  // load_obj has warned already
+        std::string text;
+        try {
+            text = read_text_file(file);
+            validate_mtl_text(text, file.string());
+        } catch (const InputError& e) {
+            // "scene.obj: lib.mtl:4: ..." names both the scene the user gave and the culprit.
+            if (!m_error) m_error = std::make_exception_ptr(InputError(m_obj_name + ": " + e.what()));
+            return false;
+        }
+        std::istringstream in(text);
         const std::size_t first = materials->size();
         tinyobj::LoadMtl(material_map, materials, &in, warn, err);
         for (std::size_t i = first; i < materials->size(); ++i) m_source.push_back(file);
         return true;
+    }
+
+    // Rethrows the first error met in a library, if any.
+    void rethrow_error() const
+    {
+        if (m_error) std::rethrow_exception(m_error);
     }
 
     // The .mtl that defined material i (texture paths are relative to it).
@@ -56,7 +69,9 @@ public:
 
 private:
     std::filesystem::path m_dir;
+    std::string m_obj_name;
     std::vector<std::filesystem::path> m_source;
+    std::exception_ptr m_error;
 };
 
 bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
@@ -167,20 +182,22 @@ Scene load_obj(const std::filesystem::path& path, const LoadOptions& options)
     // tinyobjloader stops at the first mtllib file it can open, so check them all here.
     std::set<std::string> warned;
     for (const std::string& lib : scan.material_libraries) {
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(path.parent_path() / lib, ec) && warned.insert(lib).second)
-            log_warning(name + ": material library '" + lib + "' not found; using the default material");
+        const std::string why = why_not_regular_file(path.parent_path() / lib);
+        if (!why.empty() && warned.insert(lib).second)
+            log_warning(name + ": material library '" + lib + "' " + (why == "file not found" ? "not found" : why) +
+                        "; using the default material");
     }
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> mtls;
     std::string warn, err;
-    MtlReader reader(path.parent_path());
+    MtlReader reader(path.parent_path(), name);
     std::istringstream in(text);
     // triangulate = false: we fan-triangulate ourselves (tinyobjloader splits quads along the
     // shorter diagonal), so the triangles match the references' fan triangulation.
     const bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, &in, &reader, false, false);
+    reader.rethrow_error();
     forward_warnings(warn, name);
     if (!ok || !err.empty()) throw InputError(name + ": " + (err.empty() ? std::string("cannot parse") : err));
 

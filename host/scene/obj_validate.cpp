@@ -108,18 +108,16 @@ void check_face(const std::vector<std::string_view>& tokens, const ObjScan& scan
     }
 }
 
-}  // namespace
-
-ObjScan validate_obj_text(std::string_view text, const std::string& file_name)
+// Calls visit(tokens, at) for each non-empty line. Lines end at \n, \r\n or a lone \r, as
+// tinyobjloader splits them.
+template <typename Visit>
+void for_each_line(std::string_view text, const std::string& file_name, const char* kind, Visit visit)
 {
     if (text.find('\0') != std::string_view::npos)
-        throw InputError(file_name + ": contains binary data (NUL bytes); not a text .obj file");
-
-    ObjScan scan;
+        throw InputError(file_name + ": contains binary data (NUL bytes); not a text " + kind + " file");
     std::size_t line_number = 0;
     std::size_t pos = 0;
     while (pos < text.size()) {
-        // Lines end at \n, \r\n or a lone \r, as tinyobjloader splits them.
         std::size_t end = text.find_first_of("\r\n", pos);
         if (end == std::string_view::npos) end = text.size();
         const std::string_view line = text.substr(pos, end - pos);
@@ -129,11 +127,18 @@ ObjScan validate_obj_text(std::string_view text, const std::string& file_name)
             ++pos;
         }
         ++line_number;
-
         const std::vector<std::string_view> tokens = tokenize(line);
-        if (tokens.empty()) continue;
+        if (!tokens.empty()) visit(tokens, LineError(file_name, line_number));
+    }
+}
+
+}  // namespace
+
+ObjScan validate_obj_text(std::string_view text, const std::string& file_name)
+{
+    ObjScan scan;
+    for_each_line(text, file_name, ".obj", [&](const std::vector<std::string_view>& tokens, const LineError& at) {
         const std::string_view key = tokens[0];
-        const LineError at(file_name, line_number);
         if (key == "v") {
             check_numbers(tokens, 3, 3, at, "vertex coordinate");
             ++scan.positions;
@@ -150,8 +155,23 @@ ObjScan validate_obj_text(std::string_view text, const std::string& file_name)
         } else if (key == "mtllib") {
             for (std::size_t k = 1; k < tokens.size(); ++k) scan.material_libraries.emplace_back(tokens[k]);
         }
-    }
+    });
     return scan;
+}
+
+void validate_mtl_text(std::string_view text, const std::string& file_name)
+{
+    for_each_line(text, file_name, ".mtl", [](const std::vector<std::string_view>& tokens, const LineError& at) {
+        const std::string_view key = tokens[0];
+        const std::string what = std::string(key) + " value";
+        if (key == "Ka" || key == "Kd" || key == "Ks" || key == "Ke" || key == "Tf") {
+            // "Kd spectral file.rfl" and "Kd xyz x y z" are other colour forms tinyobjloader ignores.
+            if (tokens.size() > 1 && (tokens[1] == "spectral" || tokens[1] == "xyz")) return;
+            check_numbers(tokens, 1, 3, at, what.c_str());
+        } else if (key == "Ns" || key == "Ni" || key == "d" || key == "Tr") {
+            check_numbers(tokens, 1, 1, at, what.c_str());
+        }
+    });
 }
 
 }  // namespace gc

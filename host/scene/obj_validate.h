@@ -25,4 +25,9 @@ struct ObjScan {
 // NUL bytes (a binary file). `file_name` is only used in messages.
 ObjScan validate_obj_text(std::string_view text, const std::string& file_name);
 
+// The same check for a .mtl library: the numbers of Ka/Kd/Ks/Ke/Tf (three, or one grey value),
+// Ns/Ni/d/Tr (one) must be finite numbers; NUL bytes are refused. Throws InputError
+// "<file_name>:<line>: <what>".
+void validate_mtl_text(std::string_view text, const std::string& file_name);
+
 }  // namespace gc

@@ -37,6 +37,7 @@ struct Material {
     int albedo_texture = -1;     // index into Scene::textures, -1 = none
     int metallic_roughness_texture = -1;
     int normal_texture = -1;
+    float normal_scale = 1.0f;   // glTF normalTexture.scale (tangent-space xy factor)
     int emission_texture = -1;
 
     bool is_emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }

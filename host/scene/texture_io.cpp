@@ -5,6 +5,7 @@
 
 #include <stb_image.h>
 
+#include "host/scene/scene_file.h"
 #include "host/util/error.h"
 
 namespace gc {
@@ -50,9 +51,8 @@ std::vector<std::uint32_t> pack_rgba8(const unsigned char* data, int width, int 
 
 Texture load_texture_file(const std::filesystem::path& path, bool srgb, const std::string& referenced_by)
 {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw InputError(referenced_by + ": texture '" + path.string() + "' not found");
+    if (const std::string why = why_not_regular_file(path); !why.empty())
+        throw InputError(referenced_by + ": texture '" + path.string() + "' " + (why == "file not found" ? "not found" : why));
     int width = 0, height = 0, channels = 0;
     std::unique_ptr<unsigned char, void (*)(void*)> pixels(
         stbi_load(path.string().c_str(), &width, &height, &channels, 4), stbi_image_free);

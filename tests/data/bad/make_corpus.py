@@ -55,6 +55,13 @@ write("absurd_size.png", b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack("
       png_chunk(b"IDAT", zlib.compress(b"\0" * 64)) + png_chunk(b"IEND", b""))
 write("obj_mtl_infinite_emission.obj", "mtllib obj_mtl_infinite_emission.mtl\n" + TRI + "usemtl hot\nf 1 2 3\n")
 write("obj_mtl_infinite_emission.mtl", "newmtl hot\nKd 0.5 0.5 0.5\nKe 1e39 1 1\n")
+# tinyobjloader reads "nan" and garbage in a .mtl as 0 without a word.
+write("obj_mtl_nan_diffuse.obj", "mtllib obj_mtl_nan_diffuse.mtl\n" + TRI + "usemtl m\nf 1 2 3\n")
+write("obj_mtl_nan_diffuse.mtl", "newmtl m\nKd nan 0.5 0.5\n")
+write("obj_mtl_garbage_shininess.obj", "mtllib obj_mtl_garbage_shininess.mtl\n" + TRI + "usemtl m\nf 1 2 3\n")
+write("obj_mtl_garbage_shininess.mtl", "newmtl m\nKd 0.5 0.5 0.5\nKs 0.1 0.1 0.1\nNs shiny\n")
+# A library that is a device: reading /dev/stdin would block forever.
+write("obj_mtllib_device.obj", "mtllib /dev/stdin\n" + TRI + "f 1 2 3\n")
 # Degenerate but valid: these must render (exit 0).
 write("obj_missing_mtl.obj", "mtllib no_such_library.mtl\n" + TRI + "usemtl white\nf 1 2 3\n")
 write("obj_degenerate_only.obj",
@@ -188,6 +195,11 @@ d["textures"] = [{"source": 0}]
 d["images"] = [{"uri": "not_a_png.png"}]
 gltf("gltf_unreadable_texture.gltf", d)
 d = tri_doc(); d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+d["textures"] = [{"source": 0}]
+d["images"] = [{"uri": "absurd_size.png"}]
+gltf("gltf_texture_absurd_size.gltf", d)
+d = tri_doc(); d["meshes"][0]["primitives"][0]["material"] = 0
 d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 5}}}]
 gltf("gltf_texture_index_out_of_range.gltf", d)
 d = tri_doc(); d["scene"] = 3
@@ -229,6 +241,15 @@ write("glb_binary_garbage.glb", b"glTF" + bytes((i * 193 + 1) % 256 for i in ran
 write("glb_empty.glb", b"")
 d = tri_doc(uri=None); d["accessors"][0]["count"] = 4000000000
 write("glb_absurd_count.glb", glb(d, tri_bin()))
+
+# An embedded image whose bufferView starts at the end of the 80-byte buffer: tinygltf 2.7
+# hands stb_image a pointer past the buffer without a bounds check (found by fuzz_gltf).
+d = tri_doc(uri=None); d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+d["textures"] = [{"source": 0}]
+d["images"] = [{"bufferView": 2, "mimeType": "image/png"}]
+d["bufferViews"].append({"buffer": 0, "byteOffset": 80, "byteLength": 64})
+write("glb_image_bufferview_out_of_bounds.glb", glb(d, tri_bin()))
 
 # ---------------------------------------------------------------------------------- other
 write("scene.fbx", "Kaydara FBX Binary\n")
