@@ -12,6 +12,7 @@
 
 #include "host/math/transform.h"
 #include "host/scene/glb_check.h"
+#include "host/scene/gltf_files.h"
 #include "host/scene/gltf_images.h"
 #include "host/scene/scene_file.h"
 #include "host/scene/texture_io.h"
@@ -98,8 +99,8 @@ enum class Use { Position, Normal, TexCoord, Index };
 
 class GltfConverter {
 public:
-    GltfConverter(const tinygltf::Model& model, const std::string& name, Scene& scene)
-        : m_model(model), m_name(name), m_scene(scene)
+    GltfConverter(const tinygltf::Model& model, const std::string& name, const GltfFileLog& files, Scene& scene)
+        : m_model(model), m_name(name), m_files(files), m_scene(scene)
     {
     }
 
@@ -521,8 +522,10 @@ private:
         const tinygltf::Image& img = m_model.images[static_cast<std::size_t>(tex.source)];
         const std::string img_name = "image " + std::to_string(tex.source) + (img.uri.empty() ? "" : " '" + img.uri + "'");
         // tinygltf only warns when an external image is missing or unreadable and leaves it empty.
-        if (img.image.empty() && !img.uri.empty())
-            fail(img_name + ": file not found or unreadable (looked for it next to the scene file)");
+        if (img.image.empty() && !img.uri.empty()) {
+            const std::string why = m_files.why_not_read(img.uri);
+            fail(img_name + ": " + (why.empty() ? std::string("could not be read") : why) + " (relative to the scene's folder)");
+        }
         if (img.width <= 0 || img.height <= 0 || img.component < 1 || img.component > 4 || (img.bits != 8 && img.bits != 16))
             fail(img_name + ": not decoded (" + std::to_string(img.width) + "x" + std::to_string(img.height) + ", " +
                  std::to_string(img.component) + " channels, " + std::to_string(img.bits) + " bits)");
@@ -562,6 +565,7 @@ private:
 
     const tinygltf::Model& m_model;
     const std::string& m_name;
+    const GltfFileLog& m_files;
     Scene& m_scene;
     std::optional<std::uint32_t> m_default;
     std::map<std::pair<int, bool>, int> m_textures;
@@ -619,6 +623,8 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     install_checked_image_decoder(loader, model);
+    GltfFileLog files;
+    install_regular_file_access(loader, files);
     std::string err, warn;
     const std::string base_dir = path.parent_path().empty() ? std::string(".") : path.parent_path().string();
     const unsigned int size = static_cast<unsigned int>(bytes.size());
@@ -630,7 +636,6 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
         if (why.empty()) why = printable(warn);
         throw InputError(name + ": cannot load glTF: " + (why.empty() ? std::string("tinygltf gave no reason") : why));
     }
-    forward_warnings(warn, name);
 
     int scene_index = -1;
     if (!model.scenes.empty()) {
@@ -644,9 +649,12 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
 
     Scene scene;
     scene.source_path = name;
-    GltfConverter converter(model, name, scene);
+    GltfConverter converter(model, name, files, scene);
     converter.convert_materials();
     converter.convert_scene(scene_index);
+    // tinygltf's warnings only once the scene is known to load: when it does not, the error
+    // already carries the reason (a missing image is a warning to tinygltf).
+    forward_warnings(warn, name);
     if (scene.triangle_count() == 0) throw InputError(name + ": no triangles");
     if (scene.materials.empty()) scene.materials.push_back(Material{});
     return scene;
