@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
@@ -25,6 +27,23 @@ namespace gc {
 namespace {
 
 constexpr double k_pi = 3.14159265358979323846;
+
+// Limits on the flattened scene: 2^27 triangles (the device keeps ~200 bytes per triangle, so
+// 25 GiB), and what the host's memory can take while loading, building the BVH and (on a CPU
+// device, whose buffers are host memory) rendering: a 2M-triangle mesh peaked at 1.16 GB
+// resident rendering on PoCL, ~480 bytes per triangle, rounded up.
+constexpr std::uint64_t k_max_scene_triangles = std::uint64_t{1} << 27;
+constexpr std::uint64_t k_host_bytes_per_triangle = 512;
+// Most elements an accessor without a bufferView (all zeros, so unbounded by the file) may claim.
+constexpr std::size_t k_max_zero_elements = std::size_t{1} << 24;
+
+std::uint64_t physical_memory_bytes()
+{
+    const long pages = sysconf(_SC_PHYS_PAGES);
+    const long page_size = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::uint64_t>::max();
+    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+}
 
 // A validated view of an accessor's elements inside its buffer.
 struct AccessorView {
@@ -132,6 +151,8 @@ public:
         // the hierarchy is a set of disjoint trees.
         std::vector<char> visited(m_model.nodes.size(), 0);
         struct Visit { int node; glm::mat4 parent; };
+        struct Placed { int node; glm::mat4 world; };
+        std::vector<Placed> placed;
         std::vector<Visit> stack;
         for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
         while (!stack.empty()) {
@@ -143,11 +164,19 @@ public:
                 fail("node " + std::to_string(v.node) + " is reached twice (the node hierarchy must be a tree)");
             const tinygltf::Node& node = m_model.nodes[static_cast<std::size_t>(v.node)];
             const glm::mat4 world = v.parent * local_matrix(node, v.node);
-            const Transform to_world(world);
+            placed.push_back({v.node, world});
+            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world});
+        }
+
+        // All instances are counted before the first is expanded (see reserve_triangles).
+        for (const Placed& p : placed)
+            if (const int mesh = m_model.nodes[static_cast<std::size_t>(p.node)].mesh; mesh >= 0) reserve_triangles(mesh);
+        for (const Placed& p : placed) {
+            const tinygltf::Node& node = m_model.nodes[static_cast<std::size_t>(p.node)];
+            const Transform to_world(p.world);
             if (node.mesh >= 0) add_mesh(node.mesh, to_world);
             if (node.camera >= 0) add_camera(node.camera, to_world);
             add_light(node, to_world);
-            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world});
         }
     }
 
@@ -227,10 +256,9 @@ private:
             // The spec allows an accessor with no bufferView: all zeros. Its count is not bounded
             // by any bytes in the file, so a hostile count would make us allocate without limit
             // (found by fuzz_gltf): accept only what a real mesh could need.
-            constexpr std::size_t kMaxZeroElements = std::size_t{1} << 24;
-            if (a.count > kMaxZeroElements)
+            if (a.count > k_max_zero_elements)
                 fail(ctx + "has no bufferView (all zeros) but claims " + std::to_string(a.count) +
-                     " elements; more than " + std::to_string(kMaxZeroElements) + " is refused");
+                     " elements; more than " + std::to_string(k_max_zero_elements) + " is refused");
             return v;
         }
         if (static_cast<std::size_t>(a.bufferView) >= m_model.bufferViews.size())
@@ -278,6 +306,38 @@ private:
             }
             add_primitive(prim, where, to_world, flip);
         }
+    }
+
+    // Instancing multiplies triangles without costing the file a byte: a few hundred bytes of
+    // JSON can name thousands of instances of a mesh of millions of (zero-filled) vertices.
+    // Every instance is flattened into the scene, so the total is checked from the accessor
+    // counts before any instance is expanded.
+    void reserve_triangles(int mesh_index)
+    {
+        if (static_cast<std::size_t>(mesh_index) >= m_model.meshes.size()) return;  // add_mesh reports it
+        const tinygltf::Mesh& mesh = m_model.meshes[static_cast<std::size_t>(mesh_index)];
+        std::uint64_t triangles = 0;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = mesh.primitives[p];
+            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) continue;
+            // view() validates the accessor's counts against its bytes (no data is read), so a
+            // bad accessor gets its own precise error here rather than a triangle total.
+            const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+            if (prim.indices >= 0) {
+                triangles += view(prim.indices, Use::Index, where).count / 3;
+            } else if (const auto pos = prim.attributes.find("POSITION"); pos != prim.attributes.end()) {
+                triangles += view(pos->second, Use::Position, where).count / 3;
+            }
+        }
+        m_planned_triangles += triangles;
+        const std::uint64_t memory = m_planned_triangles * k_host_bytes_per_triangle;
+        if (m_planned_triangles > k_max_scene_triangles || memory > physical_memory_bytes())
+            fail("mesh instances add up to " + std::to_string(m_planned_triangles) + " triangles by instance " +
+                 std::to_string(m_instances + 1) + " (mesh " + std::to_string(mesh_index) +
+                 "); instances are flattened, which would need about " + std::to_string(memory >> 30) +
+                 " GiB of host memory (this machine has " + std::to_string(physical_memory_bytes() >> 30) +
+                 " GiB; at most " + std::to_string(k_max_scene_triangles) + " triangles are supported)");
+        ++m_instances;
     }
 
     void add_primitive(const tinygltf::Primitive& prim, const std::string& where, const Transform& to_world, bool flip)
@@ -570,6 +630,8 @@ private:
     std::optional<std::uint32_t> m_default;
     std::map<std::pair<int, bool>, int> m_textures;
     std::set<int> m_warned_modes;
+    std::uint64_t m_planned_triangles = 0; // over every mesh instance so far
+    std::uint64_t m_instances = 0;
     bool m_warned_tangent = false; // TANGENT is reported once per file
     std::vector<int> m_uv_sets; // per glTF material: the TEXCOORD_n its textures read
 };

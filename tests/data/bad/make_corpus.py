@@ -184,6 +184,12 @@ d = tri_doc(); d["meshes"][0]["primitives"][0]["mode"] = 0
 gltf("gltf_points_only.gltf", d)
 d = tri_doc(); d["meshes"] = []; d["nodes"] = [{}]
 gltf("gltf_no_meshes.gltf", d)
+# 300 bytes of JSON naming 3000 instances of a mesh of 2^24 - 1 zero-filled vertices: 16.7
+# billion triangles once flattened. Refused from the counts, before any instance is expanded.
+d = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": list(range(3000))}],
+     "nodes": [{"mesh": 0}] * 3000, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+     "accessors": [{"componentType": 5126, "count": 16777215, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}]}
+gltf("gltf_instances_absurd_total.gltf", d)
 d = tri_doc(); d["meshes"][0]["primitives"][0]["material"] = 0
 d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
 d["textures"] = [{"source": 0}]
