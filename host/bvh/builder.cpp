@@ -1,313 +1,472 @@
 #include "host/bvh/builder.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
-#include <exception>
+#include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <thread>
 
+#include "host/bvh/simd4.h"
+#include "host/bvh/task_pool.h"
 #include "host/util/error.h"
 
 namespace gc {
 namespace {
+
+using simd::Vec4;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kMaxBins = 128;
 // The kernels' stack holds 64 entries, enough for trees of depth <= 63 (root at depth 0).
 // Below this depth budget the builder switches from SAH to median splits (see build()).
 constexpr std::uint32_t kMaxTreeDepth = 63;
-// Subtrees smaller than this are not worth a thread.
-constexpr std::uint32_t kMinParallelPrims = 8192;
+// Work sizes, in triangles. None of them changes a decision, only which thread does what.
+constexpr std::uint32_t kMinTaskPrims = 4096;       // smaller subtrees stay on their thread
+constexpr std::uint32_t kParallelBinPrims = 65536;  // larger nodes bin in parallel chunks...
+constexpr std::uint32_t kMinBinChunkPrims = 16384;  // ...of at least this many triangles
+constexpr std::uint32_t kSplitBinPrims = 128;       // from here on, bin into two sets (add_split)
+constexpr std::uint32_t kPrimChunk = 65536;         // chunk of the triangle-bounds pass
+// Node slots a thread takes from the shared array at a time; even, since nodes come in
+// sibling pairs, so a block is used up exactly before the next one is taken.
+constexpr std::uint32_t kNodeBlock = 256;
 
-// Inputs are validated finite, so plain std::min/std::max (inlined compares) replace
-// fmin/fmax, which GCC turns into libm calls for their NaN rules.
-struct Box {
-    float lo[3] = {kInf, kInf, kInf};
-    float hi[3] = {-kInf, -kInf, -kInf};
-
-    void grow(const float* plo, const float* phi)
-    {
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], plo[a]);
-            hi[a] = std::max(hi[a], phi[a]);
-        }
-    }
-    void grow(const Box& b) { grow(b.lo, b.hi); }
-    void grow_point(const float* p) { grow(p, p); }
-
-    float area() const
-    {
-        if (lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]) return 0.0f;
-        const float dx = hi[0] - lo[0];
-        const float dy = hi[1] - lo[1];
-        const float dz = hi[2] - lo[2];
-        return 2.0f * (dx * dy + dy * dz + dz * dx);
-    }
+// A triangle's bounds, the unit the builder partitions in place (no index indirection in
+// the hot loops). w of `lo` holds the bits of the scene triangle index, w of `hi` is 0.
+struct alignas(16) PrimRef {
+    float lo[4];
+    float hi[4];
 };
 
-struct PrimBox {
-    float lo[3];
-    float hi[3];
-};
-
-// Half of each bound rather than half their sum: no overflow near FLT_MAX.
-inline void centroid(const PrimBox& b, float* c)
+std::uint32_t prim_of(const PrimRef& r)
 {
-    for (int a = 0; a < 3; ++a) c[a] = 0.5f * b.lo[a] + 0.5f * b.hi[a];
+    std::uint32_t prim;
+    std::memcpy(&prim, &r.lo[3], sizeof prim);
+    return prim;
 }
 
-// Trivially constructible (no member initialisers): find_split runs once per node and resets
-// only the bins it uses; constructing all kMaxBins * 3 of them would dominate small nodes.
-struct Bin {
-    float lo[3];
-    float hi[3];
-    std::uint32_t count;
+struct Box4 {
+    Vec4 lo = simd::splat(kInf);
+    Vec4 hi = simd::splat(-kInf);
 
-    void reset()
+    void grow(Vec4 l, Vec4 h)
     {
+        lo = simd::min(lo, l);
+        hi = simd::max(hi, h);
+    }
+    void grow(const Box4& b) { grow(b.lo, b.hi); }
+    void grow_point(Vec4 p) { grow(p, p); }
+
+    // Surface area; 0 for an empty box (lo > hi on some axis). Inputs are finite or the
+    // empty box's infinities, so hi - lo is negative exactly when lo > hi.
+    float area() const
+    {
+        alignas(16) float d[4];
+        simd::store(d, hi - lo);
+        if (d[0] < 0.0f || d[1] < 0.0f || d[2] < 0.0f) return 0.0f;
+        return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+    }
+    void store(BvhBuildNode& node) const
+    {
+        alignas(16) float l[4];
+        alignas(16) float h[4];
+        simd::store(l, lo);
+        simd::store(h, hi);
         for (int a = 0; a < 3; ++a) {
-            lo[a] = kInf;
-            hi[a] = -kInf;
+            node.lo[a] = l[a];
+            node.hi[a] = h[a];
         }
-        count = 0;
     }
 };
 
-// A candidate split: centroids with bin_index(c[axis]) < bin go left.
+// Surface areas of three non-empty boxes, one per lane (w: 0), with the arithmetic of
+// Box4::area: 2 * (dx * dy + dy * dz + dz * dx).
+inline Vec4 areas(const Box4* box)
+{
+    Vec4 dx;
+    Vec4 dy;
+    Vec4 dz;
+    simd::transpose3(box[0].hi - box[0].lo, box[1].hi - box[1].lo, box[2].hi - box[2].lo, dx, dy, dz);
+    return simd::splat(2.0f) * (dx * dy + dy * dz + dz * dx);
+}
+
+// Loads a reference's corners, w lanes cleared (the index bits are no number).
+inline void load(const PrimRef& r, Vec4& lo, Vec4& hi)
+{
+    lo = simd::xyz(simd::load(r.lo));
+    hi = simd::load(r.hi);
+}
+
+// Half of each bound rather than half their sum: no overflow near FLT_MAX. Lane for lane the
+// same arithmetic as 0.5f * lo + 0.5f * hi in scalar code.
+inline Vec4 centroid(Vec4 lo, Vec4 hi)
+{
+    const Vec4 half = simd::splat(0.5f);
+    return lo * half + hi * half;
+}
+
+// Centroid -> bin per axis: min((c - cmin) * scale, bins - 1), truncated. c >= cmin, so the
+// index is never negative; an axis that cannot be binned has scale 0 and maps to bin 0.
+struct BinMap {
+    Vec4 cmin;
+    Vec4 scale;
+    Vec4 top;
+    int bins = 0;
+    bool usable[3] = {false, false, false};
+
+    void index(Vec4 c, std::int32_t* out) const // out: 16-byte aligned, 4 entries
+    {
+        simd::truncate(simd::min((c - cmin) * scale, top), out);
+    }
+};
+
+// Trivially constructible: only the `bins` entries in use are reset, which matters for the
+// many small nodes near the leaves.
+struct BinSet {
+    Vec4 lo[3][kMaxBins];
+    Vec4 hi[3][kMaxBins];
+    std::uint32_t count[3][kMaxBins];
+
+    void reset(int bins)
+    {
+        for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < bins; ++i) {
+                lo[a][i] = simd::splat(kInf);
+                hi[a][i] = simd::splat(-kInf);
+                count[a][i] = 0;
+            }
+    }
+    void add(const PrimRef& ref, const BinMap& map)
+    {
+        Vec4 l;
+        Vec4 h;
+        load(ref, l, h);
+        alignas(16) std::int32_t b[4];
+        map.index(centroid(l, h), b);
+        for (int a = 0; a < 3; ++a) {
+            lo[a][b[a]] = simd::min(lo[a][b[a]], l);
+            hi[a][b[a]] = simd::max(hi[a][b[a]], h);
+            ++count[a][b[a]];
+        }
+    }
+    void add(const PrimRef* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map)
+    {
+        for (std::uint32_t i = begin; i < end; ++i) add(refs[i], map);
+    }
+    // As add(), alternating between this set and `spare` (reset here) and merging at the end:
+    // neighbouring triangles often share a bin, and one set makes each update wait for the
+    // previous one's store; two sets let two such chains run side by side.
+    void add_split(const PrimRef* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map, BinSet& spare)
+    {
+        spare.reset(map.bins);
+        std::uint32_t i = begin;
+        for (; i + 1 < end; i += 2) {
+            add(refs[i], map);
+            spare.add(refs[i + 1], map);
+        }
+        if (i < end) add(refs[i], map);
+        merge(spare, map.bins);
+    }
+    // Min, max and integer sums: the merged bins do not depend on how the range was cut.
+    void merge(const BinSet& other, int bins)
+    {
+        for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < bins; ++i) {
+                lo[a][i] = simd::min(lo[a][i], other.lo[a][i]);
+                hi[a][i] = simd::max(hi[a][i], other.hi[a][i]);
+                count[a][i] += other.count[a][i];
+            }
+    }
+};
+
+// A candidate split: centroids with map.index(c)[axis] < bin go left.
 struct Split {
     int axis = -1;
     int bin = 0;
-    float cmin = 0.0f;
-    float scale = 0.0f;
-    int bins = 0;      // bin count used for this node
+    BinMap map;
     float cost = kInf; // sum over both sides of area * count (not yet normalised)
-    std::uint32_t left_count = 0;
+    Box4 left_box;     // bounds of the triangles on each side, the union of their bins
+    Box4 right_box;
 };
 
-inline int bin_index(float c, float cmin, float scale, int bins)
-{
-    // c >= cmin and (c - cmin) * scale <= bins * (1 + eps): no overflow, no negative index.
-    const int b = static_cast<int>((c - cmin) * scale);
-    return std::min(b, bins - 1);
-}
+// A node to build: its slot in the node array, its triangles refs[begin, end), its depth and
+// bounds (of the triangles and of their centroids), known from the parent's partition.
+struct NodeJob {
+    std::uint32_t slot;
+    std::uint32_t begin;
+    std::uint32_t end;
+    std::uint32_t depth;
+    Box4 box;
+    Box4 cbox;
+};
+
+template <class T>
+using Buffer = std::vector<T, DefaultInitAllocator<T>>;
 
 class Builder {
 public:
-    Builder(const std::vector<PrimBox>& prims, std::vector<std::uint32_t>& indices,
-            const BvhBuildOptions& options, int threads)
-        : m_prims(prims), m_indices(indices), m_options(options), m_spare_threads(threads - 1)
+    Builder(Buffer<PrimRef>& refs, BvhTree& tree, const BvhBuildOptions& options, TaskPool& pool)
+        : m_refs(refs), m_tree(tree), m_options(options), m_pool(pool),
+          m_arenas(static_cast<std::size_t>(pool.threads()))
     {
+        // A tree over n triangles has at most 2n - 1 nodes; each thread may leave the rest of
+        // its last block unused. The array is not initialised, so unused capacity costs no
+        // memory traffic.
+        const std::size_t n = refs.size();
+        m_tree.nodes.resize(2 * n - 1 + static_cast<std::size_t>(pool.threads()) * kNodeBlock);
     }
 
-    // Builds the subtree over m_indices[begin, end) into out[slot] and nodes appended to out.
-    void build(std::vector<BvhBuildNode>& out, std::uint32_t slot, std::uint32_t begin, std::uint32_t end,
-               std::uint32_t depth)
+    void build_root(const Box4& box, const Box4& cbox)
     {
-        Box node_box;
-        Box centroid_box;
-        for (std::uint32_t i = begin; i < end; ++i) {
-            const PrimBox& p = m_prims[m_indices[i]];
-            float c[3];
-            centroid(p, c);
-            node_box.grow(p.lo, p.hi);
-            centroid_box.grow_point(c);
+        build(NodeJob{0, 0, static_cast<std::uint32_t>(m_refs.size()), 0, box, cbox});
+        // Slots left in the threads' last blocks are never referenced; zero them so the
+        // array holds no uninitialised bytes, then drop the unused tail.
+        const std::uint32_t used = m_next_block.load();
+        for (const Arena& a : m_arenas)
+            if (a.next < a.end) std::memset(&m_tree.nodes[a.next], 0, (a.end - a.next) * sizeof(BvhBuildNode));
+        m_tree.nodes.resize(used);
+    }
+
+private:
+    struct alignas(64) Arena { // per thread, on its own cache line
+        std::uint32_t next = 0;
+        std::uint32_t end = 0;
+    };
+
+    std::uint32_t allocate_pair()
+    {
+        Arena& a = m_arenas[static_cast<std::size_t>(m_pool.worker_index())];
+        if (a.next == a.end) {
+            a.next = m_next_block.fetch_add(kNodeBlock);
+            a.end = a.next + kNodeBlock;
         }
-        for (int a = 0; a < 3; ++a) {
-            out[slot].lo[a] = node_box.lo[a];
-            out[slot].hi[a] = node_box.hi[a];
-        }
-        const std::uint32_t n = end - begin;
+        const std::uint32_t pair = a.next;
+        a.next += 2;
+        return pair;
+    }
+
+    void build(const NodeJob& job)
+    {
+        BvhBuildNode& node = m_tree.nodes[job.slot];
+        job.box.store(node);
+        const std::uint32_t n = job.end - job.begin;
         const auto max_leaf = static_cast<std::uint32_t>(m_options.max_leaf_size);
 
         // Depth guard: SAH may peel off a few triangles per level on pathological input. Once
         // depth + ceil(log2 n) reaches the limit, median splits (which halve n) take over and
         // keep every leaf at depth <= kMaxTreeDepth.
-        const bool median_only = depth + static_cast<std::uint32_t>(std::bit_width(n - 1)) >= kMaxTreeDepth;
-        if (n == 1 || (median_only && n <= max_leaf)) return make_leaf(out[slot], begin, n);
+        const bool median_only =
+            job.depth + static_cast<std::uint32_t>(std::bit_width(n - 1)) >= kMaxTreeDepth;
+        if (n == 1 || (median_only && n <= max_leaf)) return make_leaf(node, job.begin, n);
 
         Split split;
-        if (!median_only) split = find_split(centroid_box, begin, end);
+        if (!median_only) split = find_split(job);
         if (n <= max_leaf) {
             // SAH termination (Wald 2007, eq. 1): a leaf costs C_isect * n; a split costs
             // C_trav + C_isect * (A_L n_L + A_R n_R) / A. A flat or point-like node (A == 0)
             // cannot be priced by area: keep it a leaf.
-            const float area = node_box.area();
+            const float area = job.box.area();
             const float leaf_cost = m_options.intersection_cost * static_cast<float>(n);
             const float split_cost = area > 0.0f
                                          ? m_options.traversal_cost + m_options.intersection_cost * split.cost / area
                                          : kInf;
-            if (split.axis < 0 || leaf_cost <= split_cost) return make_leaf(out[slot], begin, n);
+            if (split.axis < 0 || leaf_cost <= split_cost) return make_leaf(node, job.begin, n);
         }
 
-        std::uint32_t mid;
+        const std::uint32_t pair = allocate_pair();
+        node.first = pair;
+        node.count = 0;
+        NodeJob left{pair, job.begin, 0, job.depth + 1, {}, {}};
+        NodeJob right{pair + 1, 0, job.end, job.depth + 1, {}, {}};
         if (split.axis >= 0) {
-            mid = partition(split, begin, end);
+            left.end = partition(split, job.begin, job.end, left, right);
         } else {
-            mid = median_split(centroid_box, begin, end);
+            left.end = median_split(job, left, right);
         }
+        right.begin = left.end;
 
-        const auto pair = static_cast<std::uint32_t>(out.size());
-        out.resize(out.size() + 2);
-        out[slot].first = pair;
-        out[slot].count = 0;
-        build_children(out, pair, begin, mid, end, depth + 1);
+        if (m_pool.threads() > 1 && left.end - left.begin >= kMinTaskPrims && right.end - right.begin >= kMinTaskPrims) {
+            TaskGroup group;
+            m_pool.spawn(group, [this, right] { build(right); });
+            build(left);
+            m_pool.wait(group);
+        } else {
+            build(left);
+            build(right);
+        }
     }
 
-private:
     static void make_leaf(BvhBuildNode& node, std::uint32_t begin, std::uint32_t n)
     {
         node.first = begin;
         node.count = n;
     }
 
-    // The left child may go to another thread; it builds into its own vector, spliced in
-    // after the join. Which subtrees run in parallel never changes a decision, only where
-    // nodes sit in `out`, and flatten() puts them in canonical order anyway.
-    void build_children(std::vector<BvhBuildNode>& out, std::uint32_t pair, std::uint32_t begin, std::uint32_t mid,
-                        std::uint32_t end, std::uint32_t depth)
-    {
-        if (mid - begin < kMinParallelPrims || end - mid < kMinParallelPrims || !acquire_thread()) {
-            build(out, pair, begin, mid, depth);
-            build(out, pair + 1, mid, end, depth);
-            return;
-        }
-        std::vector<BvhBuildNode> left(1);
-        std::exception_ptr left_error;
-        std::thread worker([&] {
-            try {
-                build(left, 0, begin, mid, depth);
-            } catch (...) {
-                left_error = std::current_exception();
-            }
-            m_spare_threads.fetch_add(1);
-        });
-        try {
-            build(out, pair + 1, mid, end, depth);
-        } catch (...) {
-            worker.join();
-            throw;
-        }
-        worker.join();
-        if (left_error) std::rethrow_exception(left_error);
-
-        // left[0] goes to out[pair]; left[j], j >= 1, to out[base + j - 1].
-        const auto base = static_cast<std::uint32_t>(out.size());
-        auto relocate = [base](BvhBuildNode node) {
-            if (node.count == 0) node.first = base + node.first - 1;
-            return node;
-        };
-        out[pair] = relocate(left[0]);
-        out.reserve(out.size() + left.size() - 1);
-        for (std::size_t j = 1; j < left.size(); ++j) out.push_back(relocate(left[j]));
-    }
-
-    bool acquire_thread()
-    {
-        int spare = m_spare_threads.load();
-        while (spare > 0) {
-            if (m_spare_threads.compare_exchange_weak(spare, spare - 1)) return true;
-        }
-        return false;
-    }
-
     // Wald 2007: bin centroids on all three axes in one pass, then sweep the bins from both
     // ends to price every boundary. Ties keep the first candidate found (axis x, y, z; right
     // to left), except that an exactly equal cost with a more even count split wins, which
     // keeps zero-area clusters from peeling one triangle per level.
-    Split find_split(const Box& cb, std::uint32_t begin, std::uint32_t end) const
+    Split find_split(const NodeJob& job)
     {
-        // A node of n < bins triangles gets n bins: resetting and sweeping all bins was most
-        // of the build time (most nodes are small), and the SAH barely notices (1M random
-        // triangles: 378.6 -> 378.8). A pure function of the node, so still deterministic.
-        const int bins =
-            static_cast<int>(std::min<std::uint32_t>(static_cast<std::uint32_t>(m_options.bins), end - begin));
-        float scale[3];
-        bool usable[3];
+        const std::uint32_t n = job.end - job.begin;
+        // A node of n < 2 * bins triangles gets n / 2 bins (at least 2): resetting and
+        // sweeping the bins is most of the work in the many small nodes, and the SAH barely
+        // notices (all 32 bins -> n bins -> n / 2 bins: 1M random triangles 378.6 -> 378.8 ->
+        // 379.7, the dragon 43.43 -> 43.47). A pure function of the node, so deterministic.
+        const int bins = static_cast<int>(std::min<std::uint32_t>(static_cast<std::uint32_t>(m_options.bins),
+                                                                  std::max<std::uint32_t>(2, n / 2)));
+        BinMap map;
+        map.bins = bins;
+        alignas(16) float cmin[4];
+        alignas(16) float cmax[4];
+        simd::store(cmin, job.cbox.lo);
+        simd::store(cmax, job.cbox.hi);
+        float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         for (int a = 0; a < 3; ++a) {
-            const float extent = cb.hi[a] - cb.lo[a];
-            scale[a] = static_cast<float>(bins) / extent;
-            usable[a] = extent > 0.0f && std::isfinite(scale[a]) && scale[a] > 0.0f;
+            const float extent = cmax[a] - cmin[a];
+            const float s = static_cast<float>(bins) / extent;
+            map.usable[a] = extent > 0.0f && std::isfinite(s) && s > 0.0f;
+            if (map.usable[a]) scale[a] = s;
         }
-        if (!usable[0] && !usable[1] && !usable[2]) return {};
+        if (!map.usable[0] && !map.usable[1] && !map.usable[2]) return Split();
+        map.cmin = simd::make(cmin[0], cmin[1], cmin[2], 0.0f);
+        map.scale = simd::make(scale[0], scale[1], scale[2], 0.0f);
+        map.top = simd::splat(static_cast<float>(bins - 1));
 
-        Bin bin[3][kMaxBins];
-        for (int a = 0; a < 3; ++a)
-            for (int i = 0; i < bins; ++i) bin[a][i].reset();
+        BinSet local;
+        const BinSet& bin = bin_node(job, map, local);
 
-        for (std::uint32_t i = begin; i < end; ++i) {
-            const PrimBox& p = m_prims[m_indices[i]];
-            float c[3];
-            centroid(p, c);
-            for (int a = 0; a < 3; ++a) {
-                if (!usable[a]) continue;
-                Bin& b = bin[a][bin_index(c[a], cb.lo[a], scale[a], bins)];
-                for (int k = 0; k < 3; ++k) {
-                    b.lo[k] = std::min(b.lo[k], p.lo[k]);
-                    b.hi[k] = std::max(b.hi[k], p.hi[k]);
-                }
-                ++b.count;
-            }
-        }
-
-        Split best;
-        const std::uint32_t n = end - begin;
-        std::uint32_t best_imbalance = n;
-        for (int a = 0; a < 3; ++a) {
-            if (!usable[a]) continue;
-            std::array<float, kMaxBins> left_area;
-            std::array<std::uint32_t, kMaxBins> left_count;
-            Box acc;
-            std::uint32_t count = 0;
+        // Sweep all three axes at once: per boundary, the three axes' boxes are grown and
+        // their areas computed in one vector. The winner is the lexicographic minimum of
+        // (cost, count imbalance, position in the order axis x, y, z, each right to left),
+        // so the choice does not depend on the order the candidates are priced in. An axis
+        // that cannot be binned has everything in bin 0, hence no candidate; a side with no
+        // triangles is skipped before its (meaningless) area is read.
+        alignas(16) float left_area[kMaxBins][4];
+        std::uint32_t left_count[kMaxBins][3];
+        {
+            Box4 acc[3];
+            std::uint32_t count[3] = {0, 0, 0};
             for (int i = 0; i < bins - 1; ++i) {
-                acc.grow(bin[a][i].lo, bin[a][i].hi);
-                count += bin[a][i].count;
-                left_area[i] = acc.area();
-                left_count[i] = count;
+                for (int a = 0; a < 3; ++a) {
+                    acc[a].grow(bin.lo[a][i], bin.hi[a][i]);
+                    count[a] += bin.count[a][i];
+                    left_count[i][a] = count[a];
+                }
+                simd::store(left_area[i], areas(acc));
             }
-            acc = Box{};
-            count = 0;
-            for (int i = bins - 1; i >= 1; --i) {
-                acc.grow(bin[a][i].lo, bin[a][i].hi);
-                count += bin[a][i].count;
-                const std::uint32_t nl = left_count[i - 1];
-                if (nl == 0 || count == 0) continue;
-                const float cost = left_area[i - 1] * static_cast<float>(nl) + acc.area() * static_cast<float>(count);
-                const std::uint32_t imbalance = nl > count ? nl - count : count - nl;
-                if (cost < best.cost || (cost == best.cost && imbalance < best_imbalance)) {
+        }
+        Split best;
+        std::uint32_t best_imbalance = n;
+        int best_order = 0;
+        Box4 acc[3];
+        std::uint32_t count[3] = {0, 0, 0};
+        for (int i = bins - 1; i >= 1; --i) {
+            for (int a = 0; a < 3; ++a) {
+                acc[a].grow(bin.lo[a][i], bin.hi[a][i]);
+                count[a] += bin.count[a][i];
+            }
+            alignas(16) float right_area[4];
+            simd::store(right_area, areas(acc));
+            for (int a = 0; a < 3; ++a) {
+                const std::uint32_t nl = left_count[i - 1][a];
+                const std::uint32_t nr = count[a];
+                if (nl == 0 || nr == 0) continue;
+                const float cost =
+                    left_area[i - 1][a] * static_cast<float>(nl) + right_area[a] * static_cast<float>(nr);
+                const std::uint32_t imbalance = nl > nr ? nl - nr : nr - nl;
+                const int order = a * kMaxBins + (bins - 1 - i);
+                if (cost < best.cost ||
+                    (cost == best.cost &&
+                     (imbalance < best_imbalance || (imbalance == best_imbalance && order < best_order)))) {
                     best.axis = a;
                     best.bin = i;
-                    best.cmin = cb.lo[a];
-                    best.scale = scale[a];
-                    best.bins = bins;
                     best.cost = cost;
-                    best.left_count = nl;
                     best_imbalance = imbalance;
+                    best_order = order;
                 }
             }
         }
+        if (best.axis >= 0) {
+            for (int i = 0; i < bins; ++i)
+                (i < best.bin ? best.left_box : best.right_box).grow(bin.lo[best.axis][i], bin.hi[best.axis][i]);
+        }
+        best.map = map;
         return best;
     }
 
-    // In-place two-way partition written out (not std::partition, whose element order is
-    // up to the standard library) so the leaf order is the same with every toolchain.
-    std::uint32_t partition(const Split& s, std::uint32_t begin, std::uint32_t end)
+    // Bins the node's triangles into `local` (returned), a large node in chunks on several
+    // threads whose sets are merged into it.
+    const BinSet& bin_node(const NodeJob& job, const BinMap& map, BinSet& local)
     {
-        std::uint32_t i = begin;
-        std::uint32_t j = end;
-        while (i < j) {
-            float c[3];
-            centroid(m_prims[m_indices[i]], c);
-            if (bin_index(c[s.axis], s.cmin, s.scale, s.bins) < s.bin) {
-                ++i;
+        const std::uint32_t n = job.end - job.begin;
+        const auto chunks = static_cast<std::uint32_t>(
+            std::min<std::uint32_t>(static_cast<std::uint32_t>(m_pool.threads()), n / kMinBinChunkPrims));
+        if (n < kParallelBinPrims || chunks < 2) {
+            local.reset(map.bins);
+            if (n < kSplitBinPrims) {
+                local.add(m_refs.data(), job.begin, job.end, map);
             } else {
-                --j;
-                std::swap(m_indices[i], m_indices[j]);
+                BinSet spare;
+                local.add_split(m_refs.data(), job.begin, job.end, map, spare);
             }
+            return local;
         }
+        auto sets = std::make_unique<BinSet[]>(chunks);
+        TaskGroup group;
+        auto bin_chunk = [&, n, chunks](std::uint32_t c) {
+            const std::uint32_t b = job.begin + static_cast<std::uint32_t>(std::uint64_t{n} * c / chunks);
+            const std::uint32_t e = job.begin + static_cast<std::uint32_t>(std::uint64_t{n} * (c + 1) / chunks);
+            BinSet spare;
+            sets[c].reset(map.bins);
+            sets[c].add_split(m_refs.data(), b, e, map, spare);
+        };
+        for (std::uint32_t c = 1; c < chunks; ++c) m_pool.spawn(group, [&bin_chunk, c] { bin_chunk(c); });
+        bin_chunk(0);
+        m_pool.wait(group);
+        local.reset(map.bins);
+        for (std::uint32_t c = 0; c < chunks; ++c) local.merge(sets[c], map.bins);
+        return local;
+    }
+
+    static void grow(NodeJob& side, Vec4 lo, Vec4 hi, Vec4 c)
+    {
+        side.box.grow(lo, hi);
+        side.cbox.grow_point(c);
+    }
+
+    // In-place two-way partition written out (not std::partition, whose element order is up
+    // to the standard library) so the leaf order is the same with every toolchain. Without
+    // branches on the side (Lomuto's scheme, always swapping): the sides of neighbouring
+    // triangles are unpredictable, and mispredictions cost more than the extra stores. The
+    // children's centroid bounds are gathered on the way; their boxes come from the bins.
+    std::uint32_t partition(const Split& s, std::uint32_t begin, std::uint32_t end, NodeJob& left, NodeJob& right)
+    {
+        PrimRef* refs = m_refs.data();
+        Box4 cbox[2]; // [0]: right, [1]: left
+        std::uint32_t i = begin;
+        for (std::uint32_t k = begin; k < end; ++k) {
+            Vec4 lo;
+            Vec4 hi;
+            load(refs[k], lo, hi);
+            const Vec4 c = centroid(lo, hi);
+            alignas(16) std::int32_t b[4];
+            s.map.index(c, b);
+            const int goes_left = b[s.axis] < s.bin ? 1 : 0;
+            cbox[goes_left].grow_point(c);
+            // refs[i, k) go right: swapping refs[k] to i keeps that true either way.
+            const PrimRef r = refs[k];
+            refs[k] = refs[i];
+            refs[i] = r;
+            i += static_cast<std::uint32_t>(goes_left);
+        }
+        left.box = s.left_box;
+        left.cbox = cbox[1];
+        right.box = s.right_box;
+        right.cbox = cbox[0];
         return i;
     }
 
@@ -315,34 +474,43 @@ private:
     // halve by count along the widest centroid axis. std::stable_sort has one possible result
     // for a strict weak order, so this is deterministic too. With all centroids equal the
     // current order is split in half as it is.
-    std::uint32_t median_split(const Box& cb, std::uint32_t begin, std::uint32_t end)
+    std::uint32_t median_split(const NodeJob& job, NodeJob& left, NodeJob& right)
     {
+        alignas(16) float cmin[4];
+        alignas(16) float cmax[4];
+        simd::store(cmin, job.cbox.lo);
+        simd::store(cmax, job.cbox.hi);
         int axis = -1;
         float widest = 0.0f;
         for (int a = 0; a < 3; ++a) {
-            const float extent = cb.hi[a] - cb.lo[a];
+            const float extent = cmax[a] - cmin[a];
             if (extent > widest) {
                 widest = extent;
                 axis = a;
             }
         }
+        PrimRef* refs = m_refs.data();
         if (axis >= 0) {
-            std::stable_sort(m_indices.begin() + begin, m_indices.begin() + end,
-                             [this, axis](std::uint32_t x, std::uint32_t y) {
-                                 float cx[3];
-                                 float cy[3];
-                                 centroid(m_prims[x], cx);
-                                 centroid(m_prims[y], cy);
-                                 return cx[axis] < cy[axis];
-                             });
+            std::stable_sort(refs + job.begin, refs + job.end, [axis](const PrimRef& x, const PrimRef& y) {
+                return 0.5f * x.lo[axis] + 0.5f * x.hi[axis] < 0.5f * y.lo[axis] + 0.5f * y.hi[axis];
+            });
         }
-        return begin + (end - begin) / 2;
+        const std::uint32_t mid = job.begin + (job.end - job.begin) / 2;
+        for (std::uint32_t i = job.begin; i < job.end; ++i) {
+            Vec4 lo;
+            Vec4 hi;
+            load(refs[i], lo, hi);
+            grow(i < mid ? left : right, lo, hi, centroid(lo, hi));
+        }
+        return mid;
     }
 
-    const std::vector<PrimBox>& m_prims;
-    std::vector<std::uint32_t>& m_indices;
+    Buffer<PrimRef>& m_refs;
+    BvhTree& m_tree;
     const BvhBuildOptions& m_options;
-    std::atomic<int> m_spare_threads;
+    TaskPool& m_pool;
+    std::vector<Arena> m_arenas;
+    std::atomic<std::uint32_t> m_next_block{1}; // slot 0 is the root
 };
 
 void check_options(const BvhBuildOptions& o)
@@ -365,6 +533,41 @@ std::string scene_name(const Scene& scene)
     return scene.source_path.empty() ? std::string("<scene built in memory>") : scene.source_path;
 }
 
+// One chunk of the bounds pass: references for triangles [begin, end), their joint bounds,
+// and the first triangle with a non-finite vertex (count if none).
+struct PrimChunk {
+    Box4 box;
+    Box4 cbox;
+    std::size_t first_bad;
+};
+
+PrimChunk make_refs(const Scene& scene, PrimRef* refs, std::size_t begin, std::size_t end, std::size_t count)
+{
+    PrimChunk chunk{{}, {}, count};
+    for (std::size_t t = begin; t < end; ++t) {
+        const Point3 v0 = scene.vertex(t, 0);
+        const Point3 v1 = scene.vertex(t, 1);
+        const Point3 v2 = scene.vertex(t, 2);
+        if (!is_finite(v0) || !is_finite(v1) || !is_finite(v2)) {
+            chunk.first_bad = t;
+            return chunk;
+        }
+        const Vec4 a = simd::make(v0.x, v0.y, v0.z, 0.0f);
+        const Vec4 b = simd::make(v1.x, v1.y, v1.z, 0.0f);
+        const Vec4 c = simd::make(v2.x, v2.y, v2.z, 0.0f);
+        const Vec4 lo = simd::min(simd::min(a, b), c);
+        const Vec4 hi = simd::max(simd::max(a, b), c);
+        PrimRef& r = refs[t];
+        simd::store(r.lo, lo);
+        simd::store(r.hi, hi);
+        const auto prim = static_cast<std::uint32_t>(t);
+        std::memcpy(&r.lo[3], &prim, sizeof prim); // bits, not a number: no float move on the way
+        chunk.box.grow(lo, hi);
+        chunk.cbox.grow_point(centroid(lo, hi));
+    }
+    return chunk;
+}
+
 }  // namespace
 
 BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
@@ -382,36 +585,41 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
     BvhTree tree;
     if (count == 0) return tree;
 
-    std::vector<PrimBox> prims(count);
-    for (std::size_t t = 0; t < count; ++t) {
-        PrimBox& p = prims[t];
-        for (int a = 0; a < 3; ++a) {
-            p.lo[a] = kInf;
-            p.hi[a] = -kInf;
-        }
-        for (int corner = 0; corner < 3; ++corner) {
-            const Point3 v = scene.vertex(t, corner);
-            if (!is_finite(v))
-                throw InputError(scene_name(scene) + ": triangle " + std::to_string(t) +
-                                 " has a non-finite vertex coordinate (NaN or infinity)");
-            for (int a = 0; a < 3; ++a) {
-                p.lo[a] = std::min(p.lo[a], v[a]);
-                p.hi[a] = std::max(p.hi[a], v[a]);
-            }
-        }
-    }
-
-    tree.prim_indices.resize(count);
-    for (std::size_t t = 0; t < count; ++t) tree.prim_indices[t] = static_cast<std::uint32_t>(t);
-
     int threads = options.threads;
     if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    // A tree has about 2n / (leaf size) nodes; reserving that avoids most regrowth.
-    tree.nodes.reserve(2 * count / static_cast<std::size_t>(options.max_leaf_size) + 1);
-    tree.nodes.resize(1);
-    Builder builder(prims, tree.prim_indices, options, threads);
-    builder.build(tree.nodes, 0, 0, static_cast<std::uint32_t>(count), 0);
-    tree.nodes.shrink_to_fit();
+    // Threads beyond what the scene can keep busy would only cost their start.
+    threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), 1 + count / kMinTaskPrims));
+    TaskPool pool(threads);
+
+    // Triangle bounds in chunks; the chunks' results are joined in order, so the error names
+    // the first bad triangle whatever the thread count.
+    Buffer<PrimRef> refs(count);
+    const std::size_t chunks = (count + kPrimChunk - 1) / kPrimChunk;
+    std::vector<PrimChunk> parts(chunks);
+    {
+        TaskGroup group;
+        for (std::size_t c = 1; c < chunks; ++c)
+            pool.spawn(group, [&, c] {
+                parts[c] = make_refs(scene, refs.data(), c * kPrimChunk, std::min<std::size_t>(count, (c + 1) * kPrimChunk), count);
+            });
+        parts[0] = make_refs(scene, refs.data(), 0, std::min<std::size_t>(count, kPrimChunk), count);
+        pool.wait(group);
+    }
+    Box4 box;
+    Box4 cbox;
+    for (const PrimChunk& p : parts) {
+        if (p.first_bad < count)
+            throw InputError(scene_name(scene) + ": triangle " + std::to_string(p.first_bad) +
+                             " has a non-finite vertex coordinate (NaN or infinity)");
+        box.grow(p.box);
+        cbox.grow(p.cbox);
+    }
+
+    Builder builder(refs, tree, options, pool);
+    builder.build_root(box, cbox);
+
+    tree.prim_indices.resize(count);
+    for (std::size_t i = 0; i < count; ++i) tree.prim_indices[i] = prim_of(refs[i]);
     return tree;
 }
 

@@ -9,6 +9,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "host/scene/scene.h"
@@ -33,7 +37,8 @@ struct BvhBuildOptions {
 // A node of the build tree, with the same meaning as GcBvhNode: an inner node's children are
 // nodes[first] (left) and nodes[first + 1] (right); a leaf (count > 0) holds
 // prim_indices[first .. first + count). The order of nodes in the vector is arbitrary (it
-// depends on which thread built what); flatten() puts them in canonical depth-first order.
+// depends on which thread built what), and a few zeroed slots may be unreferenced (threads
+// take node slots in blocks); flatten() walks from the root into canonical depth-first order.
 struct BvhBuildNode {
     float lo[3];
     float hi[3];
@@ -41,8 +46,36 @@ struct BvhBuildNode {
     std::uint32_t count; // 0: inner node
 };
 
+// A std::allocator whose resize() leaves trivial elements uninitialised: the builder sizes
+// its arrays for the worst case up front and writes every element it uses exactly once.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = DefaultInitAllocator<U>;
+    };
+    DefaultInitAllocator() = default;
+    template <class U>
+    DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+    {
+    }
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
+    {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args)
+    {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+// Leaves' ranges of prim_indices follow the depth-first order of the tree (a left child's
+// range comes before its right sibling's, and together they make their parent's), which
+// flatten() relies on.
 struct BvhTree {
-    std::vector<BvhBuildNode> nodes;         // root at index 0; empty for an empty scene
+    std::vector<BvhBuildNode, DefaultInitAllocator<BvhBuildNode>> nodes; // root at 0; empty for an empty scene
     std::vector<std::uint32_t> prim_indices; // scene triangle indices in leaf order
 };
 

@@ -25,7 +25,8 @@ bool same_bytes(const FlatBvh& a, const FlatBvh& b)
 
 TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
 {
-    // Large enough that the builder really spawns threads (subtrees >= 8192 triangles).
+    // Large enough that the builder really runs tasks in parallel (subtrees >= 4096 triangles,
+    // nodes >= 65536 triangles binned in chunks).
     Scene scene = random_soup(150000, 21, 0.02f);
     // Plus a dense clump, so SAH splits are uneven.
     const Scene clump = random_soup(30000, 22, 0.002f);

@@ -30,7 +30,17 @@ std::string quoted(const std::string& s)
 
 }  // namespace
 
-int first_image_child(int device_index, bool tiny)
+std::string device_key(const cl::DeviceInfo& device, const std::vector<cl::DeviceInfo>& devices)
+{
+    std::size_t ordinal = 0;
+    for (const cl::DeviceInfo& d : devices) {
+        if (d.id == device.id) break;
+        if (d.platform_name == device.platform_name && d.device_name == device.device_name) ++ordinal;
+    }
+    return device.platform_name + " / " + device.device_name + " #" + std::to_string(ordinal);
+}
+
+int first_image_child(const std::string& key, bool tiny)
 {
     const auto start = Clock::now();
     std::string why;
@@ -40,12 +50,17 @@ int first_image_child(int device_index, bool tiny)
         return 2;
     }
     const FlatBvh bvh = build_bvh(s->scene);
-    const std::vector<cl::DeviceInfo> devices = cl::list_devices();
-    if (device_index < 0 || device_index >= static_cast<int>(devices.size())) {
-        std::fprintf(stderr, "first-image: no device %d\n", device_index);
+    std::string why_none;
+    const std::vector<cl::DeviceInfo> devices = cl::list_devices(&why_none);
+    const cl::DeviceInfo* device = nullptr;
+    for (const cl::DeviceInfo& d : devices)
+        if (device_key(d, devices) == key) device = &d;
+    if (!device) {
+        std::fprintf(stderr, "first-image: no OpenCL device '%s' in this process; it sees:\n%s%s%s\n", key.c_str(),
+                     cl::format_device_list(devices).c_str(), why_none.empty() ? "" : "  why: ", why_none.c_str());
         return 2;
     }
-    const cl::Context context(devices[static_cast<std::size_t>(device_index)]);
+    const cl::Context context(*device);
     RenderSettings settings;
     settings.width = s->pt_width;
     settings.height = s->pt_height;
@@ -61,7 +76,7 @@ int first_image_child(int device_index, bool tiny)
     return 0;
 }
 
-FirstImage run_first_image(int device_index, const std::string& cache_root, bool tiny)
+FirstImage run_first_image(const std::string& key, const std::string& cache_root, bool tiny)
 {
     namespace fs = std::filesystem;
     FirstImage result;
@@ -71,7 +86,7 @@ FirstImage run_first_image(int device_index, const std::string& cache_root, bool
     const std::string command = "GEOCOLD_CACHE_DIR=" + quoted((root / "geocold").string()) +
                                 " POCL_CACHE_DIR=" + quoted((root / "pocl").string()) +
                                 " CUDA_CACHE_PATH=" + quoted((root / "cuda").string()) + " " + quoted(exe) +
-                                " --first-image-child " + std::to_string(device_index) + (tiny ? " --quick" : "");
+                                " --first-image-child " + quoted(key) + (tiny ? " --quick" : "");
     const auto start = Clock::now();
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) {

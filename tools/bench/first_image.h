@@ -6,6 +6,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "host/cl/device.h"
 
 namespace gc::bench {
 
@@ -19,12 +22,21 @@ struct FirstImage {
     bool from_cache = false;
 };
 
-// Runs the child for `device_index` with the three cache variables pointing under
-// cache_root (which must exist). `tiny`: 64x64 instead of 512x512.
-FirstImage run_first_image(int device_index, const std::string& cache_root, bool tiny);
+// Names `device` among `devices` (what list_devices() gave) so that another process finds the
+// same device: platform name, device name and the ordinal among devices that share both. Not
+// the list index: a process may see another list (a GPU that another process holds in
+// exclusive compute mode is left out or reported unavailable, and the loader's platform
+// order is not promised), and an index then names another device or none.
+std::string device_key(const cl::DeviceInfo& device, const std::vector<cl::DeviceInfo>& devices);
+
+// Runs the child for the device named by `key` (device_key) with the three cache variables
+// pointing under cache_root (which must exist). `tiny`: 64x64 instead of 512x512. The caller
+// must hold no context on the device: the child measures a device it has to itself.
+FirstImage run_first_image(const std::string& key, const std::string& cache_root, bool tiny);
 
 // The child's side: renders, prints one line "first-image <total> <compile> <render> <cached>"
-// on stdout. Returns the process exit code.
-int first_image_child(int device_index, bool tiny);
+// on stdout. Returns the process exit code; when no device matches the key, says so on
+// stderr with the devices this process sees.
+int first_image_child(const std::string& key, bool tiny);
 
 }  // namespace gc::bench

@@ -53,7 +53,7 @@ struct Options {
     bool path = true;
     bool rays = true;
     bool first_image = true;
-    int first_image_child = -1;
+    std::string first_image_child; // the device key (device_key()) in the child process
 };
 
 double seconds_since(Clock::time_point start)
@@ -105,7 +105,7 @@ Options parse(int argc, char** argv)
         else if (a == "--no-path") o.path = false;
         else if (a == "--no-rays") o.rays = false;
         else if (a == "--no-first-image") o.first_image = false;
-        else if (a == "--first-image-child") o.first_image_child = integer(i);
+        else if (a == "--first-image-child") o.first_image_child = value(i);
         else if (a == "--help" || a == "-h") {
             std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
                         "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
@@ -364,7 +364,7 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
 int run(int argc, char** argv)
 {
     const Options o = parse(argc, argv);
-    if (o.first_image_child >= 0) return first_image_child(o.first_image_child, o.quick);
+    if (!o.first_image_child.empty()) return first_image_child(o.first_image_child, o.quick);
     if (o.json_out) g_text = stderr;
 
     std::string why;
@@ -416,14 +416,18 @@ int run(int argc, char** argv)
 
     if (o.first_image) {
         say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
+        // The children get each device to themselves: a GPU in exclusive-process compute mode
+        // cannot be opened while this process holds a context on it.
+        for (DeviceSlot& d : devices) d.context.reset();
         for (DeviceSlot& d : devices) {
             namespace fs = std::filesystem;
             const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" +
                                                                 std::to_string(d.index));
             fs::remove_all(root);
             fs::create_directories(root);
-            const FirstImage cold = run_first_image(d.index, root.string(), o.quick);
-            const FirstImage warm = run_first_image(d.index, root.string(), o.quick);
+            const std::string key = device_key(d.info, all);
+            const FirstImage cold = run_first_image(key, root.string(), o.quick);
+            const FirstImage warm = run_first_image(key, root.string(), o.quick);
             fs::remove_all(root);
             for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
                 if (!fi.ok) {

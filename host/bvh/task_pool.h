@@ -1,0 +1,61 @@
+// A small fork-join pool for the BVH builder: workers start once per build instead of one
+// std::thread per parallel subtree, and a thread that waits for its children runs queued
+// tasks meanwhile, so nested fork-join never idles a core or deadlocks.
+//
+//     TaskPool pool(threads);           // threads - 1 workers; the caller is worker 0
+//     TaskGroup group;
+//     pool.spawn(group, [&] { ... });   // may run on any thread, or on the caller in wait()
+//     ...                               // the caller's own share
+//     pool.wait(group);                 // rethrows the first exception of the group's tasks
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace gc {
+
+struct TaskGroup {
+    std::size_t pending = 0;  // guarded by the pool's mutex
+    std::exception_ptr error; // the first failure, guarded likewise
+};
+
+class TaskPool {
+public:
+    explicit TaskPool(int threads);
+    ~TaskPool();
+    TaskPool(const TaskPool&) = delete;
+    TaskPool& operator=(const TaskPool&) = delete;
+
+    int threads() const { return static_cast<int>(m_workers.size()) + 1; }
+    // 0 on the thread that made the pool, 1..threads()-1 on the workers; -1 elsewhere.
+    int worker_index() const;
+
+    void spawn(TaskGroup& group, std::function<void()> task);
+    void wait(TaskGroup& group);
+
+private:
+    struct Task {
+        TaskGroup* group;
+        std::function<void()> run;
+    };
+    void worker_main(int index);
+    void run_task(Task& task, std::unique_lock<std::mutex>& lock);
+
+    std::mutex m_mutex;
+    std::condition_variable m_changed; // a task was queued or finished, or the pool stops
+    std::deque<Task> m_queue;
+    bool m_stop = false;
+    std::vector<std::thread> m_workers;
+    // The creating thread's previous pool, if any, restored on destruction. A pool must be
+    // destroyed on the thread that made it.
+    const TaskPool* m_outer_pool;
+    int m_outer_index;
+};
+
+}  // namespace gc
