@@ -1,4 +1,6 @@
-/* generate.cl — camera rays for every pixel of the batch, fresh path state, all queued. */
+/* generate.cl — camera rays for every path of the pass, fresh path state, all queued. A pass
+ * holds params.samples_in_pass consecutive samples of the batch's pixels: slot
+ * s * pixel_count + p is sample sample_index + s of pixel pixel_offset + p. */
 #include "gc_camera.h"
 #include "gc_rng.h"
 
@@ -9,9 +11,10 @@ __kernel void generate(const GcRenderParams params,
                        __global uint* counters)
 {
     const uint slot = get_global_id(0);
-    if (slot >= params.pixel_count) return;
-    const uint pixel = params.pixel_offset + slot;
-    const float4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
+    if (slot >= params.pixel_count * params.samples_in_pass) return;
+    const uint pixel = params.pixel_offset + slot % params.pixel_count;
+    const uint sample = params.sample_index + slot / params.pixel_count;
+    const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
     rays[slot] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
                                pixel / params.width, jitter.x, jitter.y);
     GcPathState path;
@@ -20,7 +23,7 @@ __kernel void generate(const GcRenderParams params,
     path.pixel = pixel;
     path.depth = 0u;
     path.flags = GC_PATH_SPECULAR; /* a camera ray sees emitters with full weight */
-    path.pad0 = 0u;
+    path.sample = sample;
     paths[slot] = path;
     ray_queue[atomic_inc(&counters[GC_COUNTER_RAYS_A])] = slot;
 }

@@ -1,17 +1,23 @@
 /* shadow.cl — visibility of every queued next-event-estimation ray; unoccluded ones add
  * their contribution to their path. At most one shadow ray per path is in flight, so the
- * read-modify-write of the path's radiance is race-free. */
+ * read-modify-write of the path's radiance is race-free. Alpha-MASK cut-outs let the ray
+ * through (gc_alpha.h). */
+#include "gc_alpha.h"
 #include "gc_traverse.h"
 
 __kernel void shadow(const GcRenderParams params,
                      __global const GcBvhNode* nodes,
                      __global const GcTriangle* tris,
+                     __global const GcTriangleAttribs* attribs,
+                     __global const GcMaterial* materials,
+                     __global const GcTexture* textures,
+                     __global const uint* texels,
                      __global const GcShadowRay* shadow_rays,
                      __global GcPathState* paths,
                      __global const uint* counters)
 {
     const uint q = get_global_id(0);
-    if (q >= counters[GC_COUNTER_SHADOW] || q >= params.pixel_count) return;
+    if (q >= counters[GC_COUNTER_SHADOW] || q >= params.pixel_count * params.samples_in_pass) return;
     const GcShadowRay s = shadow_rays[q];
-    if (!gc_trace_any(nodes, tris, s.ray)) paths[s.slot].radiance += s.contribution;
+    if (!gc_trace_any(nodes, tris, GC_ALPHA_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
 }

@@ -96,7 +96,7 @@ ExitCode run_render(const Options& options)
     const auto render_start = Clock::now();
     bool interrupted = false;
     while (renderer.samples_done() < settings.spp) {
-        renderer.render_sample();
+        renderer.render_samples(settings.spp - renderer.samples_done());
         progress.update(renderer.samples_done());
         if (interrupt_requested()) {
             interrupted = true;

@@ -1,7 +1,11 @@
 #include "host/bvh/flatten.h"
 
+#include <algorithm>
 #include <bit>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
 #include <utility>
 
 #include "gc_accessors.h"
@@ -17,11 +21,12 @@ dev::GcBvhNode make_node(const float* lo, const float* hi, std::uint32_t first, 
     return node;
 }
 
-dev::GcTriangle make_triangle(const Point3& v0, const Point3& v1, const Point3& v2, std::uint32_t prim)
+dev::GcTriangle make_triangle(const Point3& v0, const Point3& v1, const Point3& v2, std::uint32_t prim,
+                              std::uint32_t flags = 0u)
 {
     dev::GcTriangle tri;
     tri.v0 = dev::float4(v0.x, v0.y, v0.z, std::bit_cast<float>(prim));
-    tri.v1 = dev::float4(v1.x, v1.y, v1.z, 0.0f);
+    tri.v1 = dev::float4(v1.x, v1.y, v1.z, std::bit_cast<float>(flags));
     tri.v2 = dev::float4(v2.x, v2.y, v2.z, 0.0f);
     return tri;
 }
@@ -37,7 +42,35 @@ FlatBvh empty_bvh()
     return flat;
 }
 
+// Triangle i of the flat layout is scene triangle prim_indices[i] (see flatten()). Each is a
+// pure function of the scene, so chunks on several threads give the same bytes as one loop.
+void make_triangles(const BvhTree& tree, const Scene& scene, std::vector<dev::GcTriangle>& out)
+{
+    const std::size_t n = tree.prim_indices.size();
+    out.resize(n);
+    auto fill = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::uint32_t prim = tree.prim_indices[i];
+            const std::uint32_t flags = triangle_alpha_tested(scene, prim) ? GC_TRI_ALPHA_TESTED : 0u;
+            out[i] = make_triangle(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), prim, flags);
+        }
+    };
+    constexpr std::size_t kChunk = 65536; // below this a thread costs more than it saves
+    const std::size_t threads =
+        std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), (n + kChunk - 1) / kChunk);
+    std::vector<std::thread> workers;
+    for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(fill, n * t / threads, n * (t + 1) / threads);
+    fill(0, n / threads);
+    for (std::thread& w : workers) w.join();
+}
+
 }  // namespace
+
+bool triangle_alpha_tested(const Scene& scene, std::size_t tri)
+{
+    const Material& m = scene.materials[scene.material_ids[tri]];
+    return m.alpha_mode == AlphaMode::Mask && (m.albedo_texture >= 0 || !(m.opacity >= m.alpha_cutoff));
+}
 
 std::size_t FlatBvh::scene_triangle_count() const
 {
@@ -51,8 +84,12 @@ FlatBvh flatten(const BvhTree& tree, const Scene& scene)
 
     FlatBvh flat;
     flat.nodes.reserve(tree.nodes.size());
-    flat.triangles.reserve(tree.prim_indices.size());
     flat.nodes.emplace_back();
+    // The builder lays leaves' ranges of prim_indices out in depth-first order (a left
+    // subtree's range before its right sibling's), so the triangles are prim_indices' order,
+    // made apart from the node walk; the walk checks that promise leaf by leaf.
+    make_triangles(tree, scene, flat.triangles);
+    std::uint32_t next_triangle = 0;
 
     // Pre-order walk with an explicit stack of (tree node, output slot). An inner node
     // reserves its children's pair when it is visited; pushing right before left makes the
@@ -64,13 +101,12 @@ FlatBvh flatten(const BvhTree& tree, const Scene& scene)
         stack.pop_back();
         const BvhBuildNode& node = tree.nodes[src];
         if (node.count > 0) {
-            const auto first = static_cast<std::uint32_t>(flat.triangles.size());
-            for (std::uint32_t i = 0; i < node.count; ++i) {
-                const std::uint32_t prim = tree.prim_indices[node.first + i];
-                flat.triangles.push_back(
-                    make_triangle(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), prim));
-            }
-            flat.nodes[dst] = make_node(node.lo, node.hi, first, node.count);
+            if (node.first != next_triangle)
+                throw std::logic_error("flatten: BVH leaf over triangles " + std::to_string(node.first) +
+                                       " is not in depth-first order (expected " + std::to_string(next_triangle) +
+                                       "); host/bvh/builder.cpp broke its BvhTree promise");
+            next_triangle += node.count;
+            flat.nodes[dst] = make_node(node.lo, node.hi, node.first, node.count);
         } else {
             const auto pair = static_cast<std::uint32_t>(flat.nodes.size());
             flat.nodes.resize(flat.nodes.size() + 2);

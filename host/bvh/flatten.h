@@ -14,7 +14,7 @@ namespace gc {
 // node's children are nodes[first] and nodes[first + 1], and a left child's whole subtree
 // comes before its right sibling's children. Triangles are in leaf order (each leaf's
 // triangles contiguous, leaves in the same depth-first order), with the scene triangle
-// index in v0.w.
+// index in v0.w and the GC_TRI_* flags in v1.w.
 //
 // The empty scene flattens to one leaf with empty bounds (lo = +inf, hi = -inf, first = 0,
 // count = 1) over one zero-area dummy triangle at the origin whose scene index is
@@ -30,5 +30,10 @@ struct FlatBvh {
 };
 
 FlatBvh flatten(const BvhTree& tree, const Scene& scene);
+
+// True when traversal must ask the alpha test (gc_alpha.h) about scene triangle `tri`: its
+// material is alphaMode MASK and either textured or with a factor below the cutoff. An
+// untextured MASK material at or above the cutoff is solid everywhere and is not flagged.
+bool triangle_alpha_tested(const Scene& scene, std::size_t tri);
 
 }  // namespace gc

@@ -4,6 +4,8 @@
 // rule (equal t: smaller scene triangle index wins), no BVH involved.
 #pragma once
 
+#include <cstdint>
+
 #include "gc_types.h"
 #include "host/bvh/flatten.h"
 #include "host/math/ray.h"
@@ -12,8 +14,26 @@
 namespace gc {
 
 // prim == GC_INVALID (and t = +inf) on a miss; (u, v) are the barycentrics of v1 and v2.
+// These treat every triangle as opaque, as trace.cl does.
 dev::GcHit trace_closest(const FlatBvh& bvh, const Ray& ray);
 bool trace_any(const FlatBvh& bvh, const Ray& ray);
 dev::GcHit trace_brute_force(const Scene& scene, const Ray& ray);
+
+// The buffers the alpha-MASK test reads (kernels/shared/gc_alpha.h), in device form, as
+// host/render/scene_convert.h makes them for upload. textures/texels may be null when no
+// alpha-tested material has a texture.
+struct AlphaBuffers {
+    const dev::GcTriangleAttribs* attribs = nullptr;
+    const dev::GcMaterial* materials = nullptr;
+    const dev::GcTexture* textures = nullptr;
+    const std::uint32_t* texels = nullptr;
+};
+
+// As above, but candidate hits on alpha-MASK cut-outs are skipped, as extend.cl and
+// shadow.cl do (traverse_alpha_host.cpp). The brute force decides "alpha tested" from the
+// scene (triangle_alpha_tested), not from the BVH's flags.
+dev::GcHit trace_closest(const FlatBvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
+bool trace_any(const FlatBvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
+dev::GcHit trace_brute_force(const Scene& scene, const Ray& ray, const AlphaBuffers& alpha);
 
 }  // namespace gc

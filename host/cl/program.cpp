@@ -125,6 +125,26 @@ cl_program load_binary(const Context& context, const std::vector<unsigned char>&
     return program;
 }
 
+// PoCL caches every build itself (kcache, keyed on the source text and the options, which
+// carry GC_SOURCE_HASH) and the work-group functions it compiles at first launch, so a warm
+// start is as fast without our entry. Writing one costs a lot there: clGetProgramInfo(
+// CL_PROGRAM_BINARIES) makes PoCL compile a generic work-group function for every kernel on
+// top of the ones the launches need (measured, PoCL 3.1, Cornell path integrator: cold start
+// 13.6 s with our entry written, 7.3 s without; warm 0.7 s either way). POCL_KERNEL_CACHE=0
+// turns PoCL's cache off, and then ours is the only one.
+bool driver_caches_builds(const DeviceInfo& device)
+{
+    if (device.platform_name.find("Portable Computing Language") == std::string::npos) return false;
+    const char* kcache = std::getenv("POCL_KERNEL_CACHE");
+    return !(kcache && kcache[0] == '0');
+}
+
+bool store_forced(const BuildConfig& config)
+{
+    const char* env = std::getenv("GEOCOLD_CACHE_ALWAYS");
+    return config.store_when_driver_caches || (env && env[0] == '1');
+}
+
 }  // namespace
 
 bool is_kernel_dir(const fs::path& dir)
@@ -201,7 +221,9 @@ Program::Program(const Context& context, const std::string& file, const std::str
     }
     if (!m_program) {
         m_program = build_from_source(context);
-        if (cache) {
+        if (cache && driver_caches_builds(device) && !store_forced(config)) {
+            log_verbose("not caching " + file + ": " + device.platform_name + " keeps its own kernel cache");
+        } else if (cache) {
             // Best effort: a cache that cannot be written costs the next start a compile.
             std::string why;
             try {

@@ -23,6 +23,10 @@ struct BuildConfig {
     std::filesystem::path kernel_dir;  // empty: find_kernel_dir()
     std::filesystem::path cache_dir;   // empty: default_cache_dir() (env-controlled)
     bool use_cache = true;             // false: always compile, never read or write the cache
+    // Write entries even for a driver that keeps its own build cache (PoCL's kcache), where
+    // by default we only read them: see driver_caches_builds() in program.cpp. Also forced by
+    // GEOCOLD_CACHE_ALWAYS=1 (tests of the cache itself).
+    bool store_when_driver_caches = false;
 };
 
 // One program built from one top-level .cl file of the kernel directory, for the context's

@@ -48,6 +48,10 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
     m_batch = std::min(pixels, wavefront);
+    // Path slots: a whole wavefront when the image is smaller than it and several samples are
+    // asked for, so render_samples can trace them in one pass.
+    const std::uint64_t wanted = std::uint64_t{pixels} * std::max<std::uint32_t>(settings.spp, 1u);
+    m_path_capacity = static_cast<std::uint32_t>(std::max<std::uint64_t>(m_batch, std::min<std::uint64_t>(wavefront, wanted)));
 
     m_params = make_render_params(scene, camera, settings);
     if (!settings.env_map_path.empty()) {
@@ -67,12 +71,12 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     if (settings.integrator == IntegratorKind::Aov) {
         m_aov = m_program.kernel("aov_render");
     } else if (settings.integrator == IntegratorKind::Path) {
-        m_rays = cl::Buffer<dev::GcRay>::create(context, m_batch, CL_MEM_READ_WRITE, "path rays");
-        m_hits = cl::Buffer<dev::GcHit>::create(context, m_batch, CL_MEM_READ_WRITE, "path hits");
-        m_paths = cl::Buffer<dev::GcPathState>::create(context, m_batch, CL_MEM_READ_WRITE, "path state");
-        m_queue_a = cl::Buffer<std::uint32_t>::create(context, m_batch, CL_MEM_READ_WRITE, "ray queue A");
-        m_queue_b = cl::Buffer<std::uint32_t>::create(context, m_batch, CL_MEM_READ_WRITE, "ray queue B");
-        m_shadow_rays = cl::Buffer<dev::GcShadowRay>::create(context, m_batch, CL_MEM_READ_WRITE, "shadow rays");
+        m_rays = cl::Buffer<dev::GcRay>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path rays");
+        m_hits = cl::Buffer<dev::GcHit>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path hits");
+        m_paths = cl::Buffer<dev::GcPathState>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path state");
+        m_queue_a = cl::Buffer<std::uint32_t>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "ray queue A");
+        m_queue_b = cl::Buffer<std::uint32_t>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "ray queue B");
+        m_shadow_rays = cl::Buffer<dev::GcShadowRay>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "shadow rays");
         m_counters = cl::Buffer<std::uint32_t>::create(context, GC_COUNTER_COUNT, CL_MEM_READ_WRITE, "queue counters");
         m_generate = m_program.kernel("generate");
         m_extend = m_program.kernel("extend");
@@ -86,10 +90,18 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     }
 }
 
-void Renderer::render_sample()
+std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
 {
     const std::uint32_t pixels = m_params.width * m_params.height;
+    // An image smaller than the wavefront would leave most of a GPU idle and pay the ~30
+    // launches of a pass for few paths: the path integrator then traces several samples of
+    // every pixel in one pass (accumulate.cl keeps the per-pixel sums in sample order, so the
+    // image is the same bits as one sample per pass).
+    std::uint32_t samples = 1;
+    if (m_settings.integrator == IntegratorKind::Path && pixels <= m_batch)
+        samples = std::max(1u, std::min(max_samples, m_path_capacity / pixels));
     m_params.sample_index = m_samples;
+    m_params.samples_in_pass = samples;
     for (std::uint32_t offset = 0; offset < pixels; offset += m_batch) {
         m_params.pixel_offset = offset;
         m_params.pixel_count = std::min(m_batch, pixels - offset);
@@ -98,7 +110,8 @@ void Renderer::render_sample()
         else run_path_batch();
     }
     m_context.finish();
-    ++m_samples;
+    m_samples += samples;
+    return samples;
 }
 
 void Renderer::run_aov_batch()
@@ -119,7 +132,7 @@ void Renderer::run_whitted_batch()
 
 void Renderer::run_path_batch()
 {
-    const std::uint32_t n = m_params.pixel_count;
+    const std::uint32_t n = m_params.pixel_count * m_params.samples_in_pass;
     zero_counters(m_context, m_counters, 0, GC_COUNTER_COUNT);
     m_generate.set_args(m_params, m_rays, m_paths, m_queue_a, m_counters);
     m_generate.launch(m_context, n, 0, "camera rays");
@@ -135,7 +148,8 @@ void Renderer::run_path_batch()
     bool sync_counts = !m_context.device().is_gpu;
     if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) sync_counts = env[0] != '0';
     std::uint32_t live = n;
-    m_shadow.set_args(m_params, m_scene.nodes, m_scene.triangles, m_shadow_rays, m_paths, m_counters);
+    m_shadow.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
+                      m_scene.texels, m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;
     for (std::uint32_t depth = 0; depth < m_params.max_depth && live > 0; ++depth) {
         const cl::Buffer<std::uint32_t>& queue_in = a_is_input ? m_queue_a : m_queue_b;
@@ -145,7 +159,8 @@ void Renderer::run_path_batch()
         zero_counters(m_context, m_counters, counter_out, 1);
         zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
 
-        m_extend.set_args(m_params, m_scene.nodes, m_scene.triangles, m_rays, m_hits, queue_in, m_counters, counter_in);
+        m_extend.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
+                          m_scene.texels, m_rays, m_hits, queue_in, m_counters, counter_in);
         m_extend.launch(m_context, live, 0, "closest-hit rays");
         m_shade.set_args(m_params, m_scene.attribs, m_scene.materials, m_scene.textures, m_scene.texels,
                          m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
@@ -163,7 +178,7 @@ void Renderer::run_path_batch()
         a_is_input = !a_is_input;
     }
     m_accumulate.set_args(m_params, m_paths, m_film, m_film_squares);
-    m_accumulate.launch(m_context, n, 0, "film accumulation");
+    m_accumulate.launch(m_context, m_params.pixel_count, 0, "film accumulation");
 }
 
 Film Renderer::film() const

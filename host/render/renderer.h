@@ -27,7 +27,12 @@ public:
 
     // Adds one sample to every pixel (several kernel passes if the image is larger than the
     // wavefront). Enqueues work and waits for it.
-    void render_sample();
+    void render_sample() { render_samples(1); }
+
+    // Adds between 1 and max_samples samples to every pixel and returns how many: the path
+    // integrator fills its wavefront with several samples per pixel when the image is smaller
+    // than it. The image after n samples is the same bits however they were grouped.
+    std::uint32_t render_samples(std::uint32_t max_samples);
 
     std::uint32_t samples_done() const { return m_samples; }
     std::uint32_t wavefront_size() const { return m_batch; }
@@ -50,7 +55,8 @@ private:
     DeviceScene m_scene;
     dev::GcRenderParams m_params{};
     cl::Program m_program;
-    std::uint32_t m_batch = 0;
+    std::uint32_t m_batch = 0;          // pixels per pass
+    std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
     std::uint32_t m_samples = 0;
 
     cl::Buffer<glm::vec4> m_film;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gc_tangent.h"
 #include "host/util/error.h"
 
 namespace gc {
@@ -89,6 +90,7 @@ std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
     const std::size_t n = scene.triangle_count();
     std::vector<dev::GcTriangleAttribs> out(n);
     const bool has_uv = !scene.uvs.empty();
+    const bool has_tangents = scene.tangents.size() == 3 * n;
     for (std::size_t i = 0; i < n; ++i) {
         dev::GcTriangleAttribs& a = out[i];
         a.n0 = v4(scene.normals[3 * i + 0]);
@@ -106,6 +108,17 @@ std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
         a.material = scene.material_ids[i];
         a.flags = (has_uv ? GC_TRIF_HAS_UV : 0u) |
                   (i < scene.has_vertex_normals.size() && scene.has_vertex_normals[i] ? GC_TRIF_HAS_VERTEX_NORMALS : 0u);
+        // The file's tangents, packed into the normals' spare .w (gc_tangent.h), when all three
+        // corners have one; otherwise the kernel keeps the generated a.tangent.
+        if (has_tangents && scene.tangents[3 * i].w != 0.0f && scene.tangents[3 * i + 1].w != 0.0f &&
+            scene.tangents[3 * i + 2].w != 0.0f) {
+            glm::vec4* corners[3] = {&a.n0, &a.n1, &a.n2};
+            for (int j = 0; j < 3; ++j) {
+                const glm::vec4& t = scene.tangents[3 * i + static_cast<std::size_t>(j)];
+                corners[j]->w = dev::gc_as_float(dev::gc_tangent_encode(glm::vec3(t), t.w));
+            }
+            a.flags |= GC_TRIF_HAS_TANGENTS;
+        }
     }
     return out;
 }
@@ -124,6 +137,7 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         d.albedo_texture = texture_index(m.albedo_texture);
         d.metallic_roughness_texture = texture_index(m.metallic_roughness_texture);
         d.normal_texture = texture_index(m.normal_texture);
+        d.normal_scale = m.normal_scale;
         d.emission_texture = texture_index(m.emission_texture);
         d.flags = (m.double_sided ? GC_MATF_TWO_SIDED : 0u) |
                   (m.alpha_mode == AlphaMode::Mask ? GC_MATF_ALPHA_MASK : 0u) |
@@ -225,6 +239,7 @@ dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera,
     p.emitter_power = total_emitter_power(scene);
     p.pixel_offset = 0;
     p.pixel_count = p.width * p.height;
+    p.samples_in_pass = 1;
     return p;
 }
 

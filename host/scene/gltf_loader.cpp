@@ -114,7 +114,7 @@ std::string component_name(int ct)
     }
 }
 
-enum class Use { Position, Normal, TexCoord, Index };
+enum class Use { Position, Normal, TexCoord, Index, Tangent };
 
 class GltfConverter {
 public:
@@ -237,10 +237,11 @@ private:
                       (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
                        ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
             break;
+        case Use::Tangent: ok_type = a.type == TINYGLTF_TYPE_VEC4 && ct == TINYGLTF_COMPONENT_TYPE_FLOAT; break;
         }
         if (!ok_type) {
             static const char* expected[] = {"VEC3 FLOAT", "VEC3 FLOAT", "VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT",
-                                             "SCALAR UNSIGNED_BYTE/SHORT/INT"};
+                                             "SCALAR UNSIGNED_BYTE/SHORT/INT", "VEC4 FLOAT"};
             fail(ctx + type_name(a.type) + " " + component_name(ct) + (a.normalized ? " (normalized)" : "") +
                  " where " + expected[static_cast<int>(use)] + " is required");
         }
@@ -360,16 +361,15 @@ private:
         std::optional<AccessorView> nrm, uv;
         if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) nrm = view(it->second, Use::Normal, where);
         if (const auto it = prim.attributes.find(uv_name); it != prim.attributes.end()) uv = view(it->second, Use::TexCoord, where);
-        // The device keeps one tangent per triangle, derived from positions and uvs
-        // (host/render/scene_convert.cpp); a file's per-vertex TANGENT is not stored.
-        if (prim.attributes.count("TANGENT") && !m_warned_tangent) {
-            m_warned_tangent = true;
-            log_warning(m_name + ": " + where + ": TANGENT is ignored; tangents are generated per triangle from the uvs");
-        }
+        std::optional<AccessorView> tan;
+        const auto tan_it = prim.attributes.find("TANGENT");
+        if (tan_it != prim.attributes.end()) tan = view(tan_it->second, Use::Tangent, where);
         if (nrm && nrm->count != nv)
             fail(where + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " + std::to_string(nv));
         if (uv && uv->count != nv)
             fail(where + ": " + uv_name + " has " + std::to_string(uv->count) + " elements, POSITION " + std::to_string(nv));
+        if (tan && tan->count != nv)
+            fail(where + ": TANGENT has " + std::to_string(tan->count) + " elements, POSITION " + std::to_string(nv));
 
         std::optional<AccessorView> idx;
         if (prim.indices >= 0) idx = view(prim.indices, Use::Index, where);
@@ -386,16 +386,21 @@ private:
         } else {
             material = default_material();
         }
+        // Only normal maps read tangents: a TANGENT the material has no use for is not kept.
+        const bool with_tangents = tan && m_scene.materials[material].normal_texture >= 0;
 
         // Transform each vertex once.
         std::vector<Point3> world_pos(nv);
         std::vector<Normal3> world_nrm(nrm ? nv : 0);
+        std::vector<glm::vec4> world_tan(with_tangents ? nv : 0);
+        const std::string tan_where = tan ? where + ", accessor " + std::to_string(tan_it->second) : std::string();
         for (std::size_t i = 0; i < nv; ++i) {
             const Point3 p(pos.get(i, 0), pos.get(i, 1), pos.get(i, 2));
             if (!is_finite(p))
                 fail(where + ", accessor " + std::to_string(pos_it->second) + ": position " + std::to_string(i) + " is not finite");
             world_pos[i] = to_world.apply(p);
             if (nrm) world_nrm[i] = to_world.apply(Normal3(nrm->get(i, 0), nrm->get(i, 1), nrm->get(i, 2)));
+            if (with_tangents) world_tan[i] = world_tangent(*tan, i, to_world, flip, tan_where);
         }
 
         TriangleSink sink(m_scene, corners / 3);
@@ -414,9 +419,28 @@ private:
                 c[j].position = world_pos[vi[j]];
                 if (nrm) c[j].normal = world_nrm[vi[j]];
                 if (uv) c[j].uv = glm::vec2(uv->get(vi[j], 0), uv->get(vi[j], 1));
+                if (with_tangents) c[j].tangent = world_tan[vi[j]];
             }
-            sink.add(c, nrm.has_value(), uv.has_value(), material);
+            sink.add(c, nrm.has_value(), uv.has_value(), material, with_tangents);
         }
+    }
+
+    // Tangent i of a TANGENT accessor in world space. The tangent lies in the surface, so it
+    // maps like a direction (the linear part, not the normals' inverse transpose), renormalised.
+    // B = w * cross(N, T) maps to det(M) * cross(N', T') under M, so a transform that swaps
+    // handedness (the one that also flips the winding) flips w. A zero tangent (or one a
+    // degenerate scale collapses) is stored as none: that triangle gets generated tangents.
+    glm::vec4 world_tangent(const AccessorView& tan, std::size_t i, const Transform& to_world, bool flip,
+                            const std::string& where) const
+    {
+        const glm::vec4 t(tan.get(i, 0), tan.get(i, 1), tan.get(i, 2), tan.get(i, 3));
+        if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z) || !std::isfinite(t.w))
+            fail(where + ": tangent " + std::to_string(i) + " is not finite");
+        const Vec3 d = to_world.apply(Vec3(t.x, t.y, t.z));
+        const float len = length(d);
+        if (!(len > 0.0f) || !std::isfinite(len)) return glm::vec4(0.0f);
+        const float w = (t.w < 0.0f) != flip ? -1.0f : 1.0f;
+        return glm::vec4(d.x / len, d.y / len, d.z / len, w);
     }
 
     void add_camera(int camera_index, const Transform& to_world)
@@ -632,7 +656,6 @@ private:
     std::set<int> m_warned_modes;
     std::uint64_t m_planned_triangles = 0; // over every mesh instance so far
     std::uint64_t m_instances = 0;
-    bool m_warned_tangent = false; // TANGENT is reported once per file
     std::vector<int> m_uv_sets; // per glTF material: the TEXCOORD_n its textures read
 };
 

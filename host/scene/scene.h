@@ -75,6 +75,9 @@ struct Scene {
     std::vector<Normal3> normals;
     // Texture coordinates follow glTF: (0, 0) is the top-left texel (OBJ's v becomes 1 - v).
     std::vector<glm::vec2> uvs;                 // three per triangle, or empty
+    // The file's per-vertex tangents (glTF TANGENT), three per triangle, or empty: xyz unit,
+    // w the bitangent sign (+1 or -1: B = w * cross(N, T)); all zero at a corner without one.
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> material_ids;    // one per triangle, index into materials
     std::vector<std::uint8_t> has_vertex_normals; // one per triangle (0/1)
 

@@ -1,6 +1,6 @@
 // Appends triangles to a Scene's flat arrays, keeping its invariants: three positions and
-// normals per triangle, one material id and has_vertex_normals flag, and uvs either empty or
-// three per triangle. Both loaders go through it.
+// normals per triangle, one material id and has_vertex_normals flag, and uvs and tangents each
+// either empty or three per triangle. Both loaders go through it.
 #pragma once
 
 #include <cmath>
@@ -14,6 +14,7 @@ struct SinkCorner {
     Point3 position;
     Normal3 normal;        // read only when the triangle has vertex normals
     glm::vec2 uv{0.0f};    // read only when the triangle has uvs
+    glm::vec4 tangent{0.0f}; // read only when the triangle has tangents: xyz unit, w = +-1
 };
 
 // The geometric normal of a counter-clockwise triangle; +Z for a zero-area one, so that
@@ -38,8 +39,10 @@ public:
 
     // with_normals: use c[i].normal, normalized; a zero or non-finite one falls back to the face
     // normal at that corner. with_uv: store c[i].uv (the first such triangle back-fills zeros
-    // for the triangles before it, so uvs stays three per triangle).
-    void add(const SinkCorner c[3], bool with_normals, bool with_uv, std::uint32_t material)
+    // for the triangles before it, so uvs stays three per triangle). with_tangents: store
+    // c[i].tangent the same way (zeros mean "none": the renderer generates that triangle's).
+    void add(const SinkCorner c[3], bool with_normals, bool with_uv, std::uint32_t material,
+             bool with_tangents = false)
     {
         const Normal3 n_face = face_normal(c[0].position, c[1].position, c[2].position);
         for (int j = 0; j < 3; ++j) {
@@ -55,6 +58,10 @@ public:
             m_scene.uvs.resize(3 * m_scene.material_ids.size(), glm::vec2(0.0f));
         if (with_uv || !m_scene.uvs.empty())
             for (int j = 0; j < 3; ++j) m_scene.uvs.push_back(with_uv ? c[j].uv : glm::vec2(0.0f));
+        if (with_tangents && m_scene.tangents.size() < 3 * m_scene.material_ids.size())
+            m_scene.tangents.resize(3 * m_scene.material_ids.size(), glm::vec4(0.0f));
+        if (with_tangents || !m_scene.tangents.empty())
+            for (int j = 0; j < 3; ++j) m_scene.tangents.push_back(with_tangents ? c[j].tangent : glm::vec4(0.0f));
         m_scene.material_ids.push_back(material);
         m_scene.has_vertex_normals.push_back(with_normals ? 1 : 0);
     }

@@ -13,6 +13,7 @@ GC_FUNC uint gc_node_first(GcBvhNode n) { return gc_as_uint(n.lo.w); }
 GC_FUNC uint gc_node_count(GcBvhNode n) { return gc_as_uint(n.hi.w); }
 GC_FUNC bool gc_node_is_leaf(GcBvhNode n) { return gc_node_count(n) != 0u; }
 GC_FUNC uint gc_triangle_prim(GcTriangle t) { return gc_as_uint(t.v0.w); }
+GC_FUNC uint gc_triangle_flags(GcTriangle t) { return gc_as_uint(t.v1.w); }
 
 GC_FUNC float gc_ray_tmin(GcRay r) { return r.org_tmin.w; }
 GC_FUNC float gc_ray_tmax(GcRay r) { return r.dir_tmax.w; }

@@ -8,8 +8,9 @@
  *
  * Materials are evaluated here, not in gc_bsdf.h: base colour and alpha, metallicRoughness,
  * normal and emissive textures at the hit's uv (gc_shade_base_color, gc_shade_material,
- * gc_shade_normal, gc_shade_emission), and glTF alpha MASK / BLEND as a pass-through (see
- * gc_shade_vertex).
+ * gc_shade_normal, gc_shade_emission), and glTF alpha BLEND as a pass-through (see
+ * gc_shade_vertex). alpha MASK never reaches this code: the traversal drops cut-away hits
+ * (gc_alpha.h), so a MASK hit that is shaded is solid.
  *
  * Depth follows Mitsuba's convention: path.depth counts the segments traced so far, so the
  * camera ray's hit is shaded at depth 1, emission is counted up to max_depth segments, and
@@ -34,6 +35,7 @@
 #include "gc_path.h"
 #include "gc_rng.h"
 #include "gc_shading.h"
+#include "gc_tangent.h"
 #include "gc_texture.h"
 
 #ifndef GC_SHADE_PARAMS
@@ -111,22 +113,28 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
     return m;
 }
 
-/* Shading normal with the material's tangent-space normal map applied. The host stores one
- * tangent per triangle (GcTriangleAttribs.tangent); it is re-orthogonalised against the
+/* Shading normal with the material's tangent-space normal map applied, at barycentrics
+ * bary = (u, v) of v1 and v2. The tangent is the file's per-vertex one interpolated, else the
+ * host's per-triangle one (gc_triangle_tangent); it is re-orthogonalised against the
  * interpolated normal ns here (Gram-Schmidt), B = w * cross(ns, T). A perturbed normal that
  * would face away from the geometric side (a texel at the grazing limit) keeps ns. */
-GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float3 ns, float3 ng, float2 uv)
+GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns, float3 ng,
+                               float2 uv)
 {
     GC_SHADE_UNUSED();
     if (m.normal_texture == GC_INVALID) return ns;
-    const float3 t_tri = GC_XYZ(a.tangent);
+    const float4 tangent = gc_triangle_tangent(a, bary.x, bary.y);
+    const float3 t_tri = GC_XYZ(tangent);
     const float3 t_raw = t_tri - ns * dot(ns, t_tri);
     const float t_len = length(t_raw);
     if (!(t_len > 1.0e-6f)) return ns;
     const float3 t = t_raw * (1.0f / t_len);
-    const float3 b = cross(ns, t) * a.tangent.w;
+    const float3 b = cross(ns, t) * tangent.w;
     const float4 tex = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.normal_texture), uv.x, uv.y);
-    const float3 n = t * (2.0f * tex.x - 1.0f) + b * (2.0f * tex.y - 1.0f) + ns * (2.0f * tex.z - 1.0f);
+    /* glTF normalTexture.scale multiplies x and y only (then the result is renormalised). */
+    const float xy_scale = m.normal_scale;
+    const float3 n = t * ((2.0f * tex.x - 1.0f) * xy_scale) + b * ((2.0f * tex.y - 1.0f) * xy_scale) +
+                     ns * (2.0f * tex.z - 1.0f);
     const float n_len = length(n);
     if (!(n_len > 1.0e-6f)) return ns;
     const float3 nn = n * (1.0f / n_len);
@@ -139,11 +147,10 @@ GC_FUNC float2 gc_triangle_uv(GcTriangleAttribs a, float3 b)
     return make_float2(b.x * a.uv01.x + b.y * a.uv01.z + b.z * a.uv2_u, b.x * a.uv01.y + b.y * a.uv01.w + b.z * a.uv2_v);
 }
 
-/* glTF alphaMode: MASK is transparent where alpha < alphaCutoff (pbr.z); BLEND is stochastic
- * transparency, transparent with probability 1 - alpha (u uniform in [0, 1)). */
+/* glTF alphaMode BLEND as stochastic transparency: transparent with probability 1 - alpha
+ * (u uniform in [0, 1)). MASK is decided in traversal (gc_alpha.h), not here. */
 GC_FUNC bool gc_alpha_transparent(GcMaterial m, float alpha, float u)
 {
-    if ((m.flags & GC_MATF_ALPHA_MASK) != 0u) return alpha < m.pbr.z;
     if ((m.flags & GC_MATF_ALPHA_BLEND) != 0u) return u >= alpha;
     return false;
 }
@@ -282,18 +289,19 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
 
-    /* Alpha cut-outs and stochastic transparency (glTF MASK / BLEND), at the shading level:
-     * a transparent hit continues the ray unchanged through the surface (throughput kept, no
-     * emission, no light sample). The pass counts as a path segment, as a null interaction
-     * does in Mitsuba 3's path integrator: the wavefront host runs max_depth extend/shade
-     * rounds, and the Vulkan reference must make the same decisions. BLEND's number comes
-     * from this bounce's own block (GC_RNG_BLOCK_EXTRA). Shadow rays do not see alpha (the
-     * traversal is opaque), so next-event estimation cannot reach a light through a
-     * cut-out; the continued path is therefore flagged specular, which gives its emitter or
-     * environment hit full weight instead of an MIS weight whose complement NEE never
-     * supplies: unbiased, only noisier behind cut-outs. */
-    if ((m.flags & (GC_MATF_ALPHA_MASK | GC_MATF_ALPHA_BLEND)) != 0u) {
-        const float4 ra = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
+    /* Stochastic transparency (glTF BLEND), at the shading level: a transparent hit
+     * continues the ray unchanged through the surface (throughput kept, no emission, no
+     * light sample). The pass counts as a path segment, as a null interaction does in
+     * Mitsuba 3's path integrator: the wavefront host runs max_depth extend/shade rounds,
+     * and the Vulkan reference must make the same decisions. BLEND's number comes from this
+     * bounce's own block (GC_RNG_BLOCK_EXTRA). Shadow rays treat BLEND surfaces as opaque
+     * (only MASK is tested in traversal, see gc_alpha.h), so next-event estimation cannot
+     * reach a light through them; the continued path is therefore flagged specular, which
+     * gives its emitter or environment hit full weight instead of an MIS weight whose
+     * complement NEE never supplies: unbiased, only noisier behind BLEND surfaces. MASK
+     * cut-outs cost no segment and are seen through by shadow rays. */
+    if ((m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
+        const float4 ra = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
         if (gc_alpha_transparent(m, base.w, ra.x)) {
             path.radiance = gc_with_w(L, path.radiance.w);
             if (path.depth < params.max_depth) {
@@ -324,12 +332,13 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     }
 
     const float3 albedo = GC_XYZ(base);
-    const GcFrame frame = gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, s.ns, s.ng, s.uv));
+    const GcFrame frame =
+        gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.ng, s.uv));
     const float3 wo = gc_frame_to_local(frame, wo_world);
 
     /* Next-event estimation: one point on one light (gc_sample_light). */
     if (gc_light_group_pmf(params) > 0.0f && !gc_bsdf_is_delta(m)) {
-        const float4 r = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
+        const float4 r = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
         const GcLightSample ls = gc_sample_light(GC_SHADE_ARGS, params, s.p, r);
         if (ls.kind != GC_LIGHT_NONE && ls.pdf_w > 0.0f) {
             const float3 wi = gc_frame_to_local(frame, ls.wi);
@@ -353,7 +362,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     }
 
     /* Continue the path by sampling the BSDF. */
-    const float4 r = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
+    const float4 r = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
     const GcBsdfSample bs = gc_bsdf_sample(m, albedo, wo, r.x, r.y, r.z);
     beta *= bs.weight;
     /* Refraction scales radiance by 1/eta^2 (gc_bsdf.h); eta_scale undoes that for Russian
@@ -369,7 +378,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
         /* Russian roulette on the throughput's largest channel, capped so bright paths
          * still end sometimes (as Mitsuba's path integrator does). */
         const float survive = fmin(fmax(beta.x, fmax(beta.y, beta.z)) * eta_scale, 0.95f);
-        const float4 rr = gc_rand4(path.pixel, params.sample_index, gc_rng_block(bounce, GC_RNG_BLOCK_ROULETTE), params.seed);
+        const float4 rr = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_ROULETTE), params.seed);
         if (rr.x >= survive) alive = false;
         else beta = beta / survive;
     }

@@ -9,6 +9,7 @@
 #version 450
 #define GC_VK_COMPUTE 1
 #include "scene_bindings.glsl"
+#include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as extend.cl / shadow.cl */
 #include "gc_traverse.h"
 #include "gc_path_vertex.h"
 #include "gc_camera.h"
@@ -34,7 +35,7 @@ void main()
     path.pixel = pixel;
     path.depth = 0u;
     path.flags = GC_PATH_SPECULAR;
-    path.pad0 = 0u;
+    path.sample = params.sample_index;
 
     /* extend -> shade -> shadow until the path ends (at most max_depth vertices). */
     for (;;) {

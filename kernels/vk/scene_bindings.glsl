@@ -49,3 +49,5 @@ layout(std430, set = 0, binding = GC_VK_BINDING_SRGB) readonly buffer SrgbBuffer
 #define GC_ATTRIB(i) attrib_data[i]
 #define GC_MATERIAL(i) material_data[i]
 #define GC_TEXTURE(i) texture_data[i]
+#define GC_ALPHA_PARAMS uint gc_alpha_unused
+#define GC_ALPHA_ARGS 0u

@@ -1,13 +1,14 @@
-// The shading-level material code of gc_path_vertex.h on the host: glTF alpha (MASK cut-off,
-// BLEND stochastic pass-through), normal maps in tangent space, the metallicRoughness
-// texture folded into the factors, and textured emission. One triangle in the z = 0 plane,
-// uv = (x, -y) so that dP/du = +x and "up the image" (-dP/dv) = +y.
+// The shading-level material code of gc_path_vertex.h on the host: glTF alpha (MASK decided
+// by gc_alpha.h's traversal test, BLEND a stochastic pass-through), normal maps in tangent
+// space, the metallicRoughness texture folded into the factors, and textured emission. One
+// triangle in the z = 0 plane, uv = (x, -y) so that dP/du = +x and "up the image" (-dP/dv) = +y.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "gc_alpha.h"
 #include "gc_path_vertex.h"
 
 namespace gc::dev {
@@ -47,6 +48,7 @@ struct OneTriangle {
         m.emission = make_float4(0, 0, 0, 1.5f);
         m.pbr = make_float4(0.0f, 0.5f, 0.5f, 0.0f);
         m.albedo_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = GC_INVALID;
+        m.normal_scale = 1.0f;
         materials.push_back(m);
     }
 
@@ -96,25 +98,28 @@ bool passed_through(const GcVertexResult& r)
            r.next.org_tmin.z < 0.0f && r.path.throughput.x == 1.0f && (r.path.flags & GC_PATH_SPECULAR) != 0u;
 }
 
-TEST(MaterialEval, AlphaMaskCutsOut)
+TEST(MaterialEval, AlphaMaskIsDecidedInTraversal)
 {
     OneTriangle s;
     s.materials[0].flags = GC_MATF_ALPHA_MASK;
-    s.materials[0].albedo.w = 0.3f; // below the cutoff 0.5
-    for (std::uint32_t px = 0; px < 64; ++px) {
-        const GcVertexResult r = s.shade(px);
-        ASSERT_TRUE(passed_through(r)) << px;
-        ASSERT_EQ(r.path.depth, 1u) << "a pass-through counts as a path segment";
-        ASSERT_EQ(r.flags & GC_VERTEX_SHADOW, 0u);
-    }
-    // Texture alpha multiplies the factor: 0.3 * 1 < 0.5 cut, 1.0 * 0.6 >= 0.5 stays.
+    const uint prim = 0;
+    auto solid = [&](float u, float v) {
+        return gc_alpha_solid(s.attribs.data(), s.materials.data(), s.textures.empty() ? nullptr : s.textures.data(),
+                              s.texel_data.empty() ? nullptr : s.texel_data.data(), prim, u, v);
+    };
+    // The traversal's test (gc_alpha.h): alpha = factor * texture alpha against the cutoff 0.5.
+    s.materials[0].albedo.w = 0.3f;
+    EXPECT_FALSE(solid(0.3f, 0.3f));
+    s.materials[0].albedo.w = 0.5f;
+    EXPECT_TRUE(solid(0.3f, 0.3f)) << "alpha == cutoff is solid (glTF: transparent only below)";
     s.materials[0].albedo.w = 1.0f;
     s.materials[0].albedo_texture = s.add_texture(rgba(255, 255, 255, 153), true);
-    EXPECT_FALSE(passed_through(s.shade(3)));
+    EXPECT_TRUE(solid(0.3f, 0.3f));
     s.texel_data[0] = rgba(255, 255, 255, 102);
-    EXPECT_TRUE(passed_through(s.shade(3)));
-    // At the last segment a transparent hit ends the path.
-    EXPECT_EQ(s.shade(3, 7).flags & GC_VERTEX_CONTINUE, 0u);
+    EXPECT_FALSE(solid(0.3f, 0.3f));
+    // A MASK hit that reaches shading passed that test: it is shaded as a surface, whatever
+    // its alpha, and costs no pass-through segment.
+    for (std::uint32_t px = 0; px < 64; ++px) ASSERT_FALSE(passed_through(s.shade(px))) << px;
 }
 
 TEST(MaterialEval, AlphaBlendIsStochastic)
@@ -142,13 +147,14 @@ TEST(MaterialEval, NormalMapTangentSpace)
     const float3 n = make_float3(0, 0, 1);
     // No texture: unchanged. Flat texel (128, 128, 255): ~unchanged.
     EXPECT_EQ(gc_shade_normal(s.attribs.data(), s.materials.data(), nullptr, nullptr, nullptr, nullptr, nullptr,
-                              nullptr, nullptr, m, a, n, n, make_float2(0.3f, 0.3f)),
+                              nullptr, nullptr, m, a, make_float2(0.3f, 0.3f), n, n, make_float2(0.3f, 0.3f)),
               n);
     s.materials[0].normal_texture = s.add_texture(rgba(128, 128, 255), false);
     auto mapped = [&](std::uint32_t texel) {
         s.texel_data[0] = texel;
         return gc_shade_normal(s.attribs.data(), s.materials.data(), s.textures.data(), s.texel_data.data(), nullptr,
-                               nullptr, nullptr, nullptr, nullptr, s.materials[0], a, n, n, make_float2(0.3f, 0.3f));
+                               nullptr, nullptr, nullptr, nullptr, s.materials[0], a, make_float2(0.3f, 0.3f), n, n,
+                               make_float2(0.3f, 0.3f));
     };
     const float3 flat = mapped(rgba(128, 128, 255));
     EXPECT_NEAR(flat.z, 1.0f, 1e-4f);

@@ -33,7 +33,8 @@ TEST_F(LayoutProbeTest, LayoutProbeColdVsWarmBuild)
     for (const DeviceInfo& device : devices) {
         test::TempDir cache;
         Context ctx(device);
-        const BuildConfig config{{}, cache.path(), true};
+        // Our cache on every driver, PoCL included (where it is read-only by default).
+        const BuildConfig config{{}, cache.path(), true, true};
         const Program cold(ctx, "layout_probe.cl", "", config);
         const Program warm(ctx, "layout_probe.cl", "", config);
         std::printf("%s: layout_probe.cl cold %.3f s, warm %.3f s\n", device.device_name.c_str(),

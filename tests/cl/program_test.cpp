@@ -28,6 +28,7 @@ protected:
         if (IsSkipped()) return;
         dir.write("compute.cl", test::compute_cl);
         config = BuildConfig{dir.path(), cache.path(), true};
+        config.store_when_driver_caches = true;  // these tests are about our cache, on any driver
     }
 
     std::vector<float> run(const Program& program, cl_uint n = 777)
@@ -191,6 +192,27 @@ TEST_F(ProgramTest, CacheCanBeDisabled)
     BuildConfig env_default{dir.path(), {}, true};
     EXPECT_FALSE(Program(*context, "compute.cl", "", env_default).from_cache());
     EXPECT_FALSE(Program(*context, "compute.cl", "", env_default).from_cache());
+}
+
+// PoCL caches builds itself; by default we then read entries but do not write them, because
+// asking PoCL for a binary doubles the work-group function compiles (program.cpp).
+TEST_F(ProgramTest, PoclBuildsAreLeftToPoclsOwnCache)
+{
+    if (context->device().platform_name.find("Portable Computing Language") == std::string::npos)
+        GTEST_SKIP() << "not a PoCL device";
+    test::ScopedEnv kcache("POCL_KERNEL_CACHE", nullptr);
+    test::ScopedEnv always("GEOCOLD_CACHE_ALWAYS", nullptr);
+    BuildConfig plain = config;
+    plain.store_when_driver_caches = false;
+    const Program program(*context, "compute.cl", "", plain);
+    EXPECT_FALSE(program.from_cache());
+    expect_plausible(run(program));
+    EXPECT_TRUE(fs::is_empty(cache.path())) << "a PoCL build wrote a binary cache entry";
+
+    // With PoCL's cache off, ours is the only one and is written again.
+    test::ScopedEnv off("POCL_KERNEL_CACHE", "0");
+    const Program uncached(*context, "compute.cl", "", plain);
+    EXPECT_FALSE(fs::is_empty(cache.path())) << "POCL_KERNEL_CACHE=0 but no entry of ours";
 }
 
 TEST_F(ProgramTest, KernelDirFromEnvironment)

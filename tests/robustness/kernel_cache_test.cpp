@@ -32,6 +32,7 @@ TEST(KernelCache, DamagedEntriesAreRebuiltAndGiveTheSameImage)
     const std::filesystem::path cache = dir / "cache";
     RunOptions options = cli_options();
     options.env["GEOCOLD_CACHE_DIR"] = cache.string();
+    options.env["GEOCOLD_CACHE_ALWAYS"] = "1"; // PoCL's own kcache would otherwise stand in for ours
     auto render = [&](const std::string& name) {
         const std::filesystem::path out = dir / (name + ".pfm");
         const RunResult r = run_process(

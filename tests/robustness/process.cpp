@@ -193,6 +193,10 @@ RunOptions cli_options()
     RunOptions options;
     options.env["GEOCOLD_CACHE_DIR"] = GC_ROBUSTNESS_CACHE_DIR;
     options.env["GEOCOLD_NO_CACHE"] = "";
+    // Our cache even on PoCL (which otherwise relies on its own kcache): a run under a file-size
+    // limit must find every compiled kernel already on disk, and PoCL rewrites kcache files
+    // when it builds from source.
+    options.env["GEOCOLD_CACHE_ALWAYS"] = "1";
 #if defined(__SANITIZE_ADDRESS__)
     // A hostile count must fail as an error, not grind through tens of GB under ASan.
     const char* asan = std::getenv("ASAN_OPTIONS");

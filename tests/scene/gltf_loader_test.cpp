@@ -39,6 +39,8 @@ struct Doc {
     std::string nodes = R"([{"mesh": 0}])";
     std::string scenes = R"([{"nodes": [0]}])";
     std::string top = "";  // extra top-level members, each followed by a comma
+    std::string extra_accessors;    // appended after the three above, each preceded by a comma
+    std::string extra_buffer_views; // the same for bufferViews
 
     std::string json() const
     {
@@ -46,10 +48,10 @@ struct Doc {
                R"(, "meshes": [{"primitives": [{"attributes": {)" + attributes + "}" + primitive_extra + "}" +
                extra_primitives + R"(]}], "accessors": [)" + position_accessor +
                R"(, {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"},
-                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
-               "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
-                               {"buffer": 0, "byteOffset": 72, "byteLength": 6}],
-               "buffers": [{)" + buffer_uri + R"("byteLength": )" + buffer_length + "}]}";
+                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"})" + extra_accessors +
+               R"(], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                               {"buffer": 0, "byteOffset": 72, "byteLength": 6})" + extra_buffer_views +
+               R"(], "buffers": [{)" + buffer_uri + R"("byteLength": )" + buffer_length + "}]}";
     }
 };
 
@@ -110,6 +112,7 @@ void expect_invariants(const Scene& s)
     ASSERT_EQ(s.positions.size(), 3 * n);
     ASSERT_EQ(s.normals.size(), 3 * n);
     ASSERT_TRUE(s.uvs.empty() || s.uvs.size() == 3 * n);
+    ASSERT_TRUE(s.tangents.empty() || s.tangents.size() == 3 * n);
     for (std::uint32_t id : s.material_ids) ASSERT_LT(id, s.materials.size());
     for (const Normal3& nn : s.normals) ASSERT_NEAR(length(nn), 1.0f, 1e-4f);
     for (const Material& m : s.materials) {
@@ -168,6 +171,12 @@ TEST(GltfShared, Avocado)
     expect_invariants(t.scene);
     EXPECT_EQ(t.scene.triangle_count(), 682u);
     EXPECT_EQ(t.scene.textures.size(), 3u);
+    // Its TANGENT reaches the scene (the material has a normal map), unit with w = +-1.
+    ASSERT_EQ(t.scene.tangents.size(), 3u * 682u);
+    for (const glm::vec4& tn : t.scene.tangents) {
+        ASSERT_NEAR(glm::length(glm::vec3(tn)), 1.0f, 1e-5f);
+        ASSERT_EQ(std::fabs(tn.w), 1.0f);
+    }
 }
 
 TEST(GltfShared, RetroUfoHierarchy)
@@ -292,6 +301,107 @@ TEST(GltfSynthetic, MaterialFactorsAndExtensions)
     EXPECT_TRUE(m.double_sided);
     EXPECT_EQ(m.alpha_mode, AlphaMode::Mask);
     EXPECT_EQ(m.alpha_cutoff, 0.25f);
+}
+
+// The one-triangle document with per-vertex TANGENT (accessor 3, 48 bytes after the 80 of
+// triangle_bin) and a material whose normal map (a 1x1 PPM) reads them.
+struct TangentDoc {
+    Doc doc;
+    std::vector<unsigned char> bin = triangle_bin();
+
+    explicit TangentDoc(const float (&tangents)[12], bool normal_map = true, const char* type = "VEC4")
+    {
+        bin.resize(128);
+        std::memcpy(bin.data() + 80, tangents, 48);
+        doc.buffer_length = "128";
+        doc.attributes = R"("POSITION": 0, "NORMAL": 1, "TANGENT": 3)";
+        doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+        doc.extra_accessors = std::string(R"(, {"bufferView": 2, "componentType": 5126, "count": 3, "type": ")") + type + "\"}";
+        doc.extra_buffer_views = R"(, {"buffer": 0, "byteOffset": 80, "byteLength": 48})";
+        doc.top = normal_map ? R"("materials": [{"normalTexture": {"index": 0}}], "textures": [{"source": 0}],
+                                  "images": [{"uri": "n.ppm"}],)"
+                             : R"("materials": [{}],)";
+    }
+
+    std::filesystem::path write(const ScratchDir& dir) const
+    {
+        const std::string ppm = std::string("P6\n1 1\n255\n") + "\x80\x80\xff";
+        dir.write("n.ppm", ppm);
+        return write_gltf(dir, doc, bin);
+    }
+};
+
+TEST(GltfSynthetic, TangentsReachTheScene)
+{
+    ScratchDir dir;
+    // v0: +y, v1: +y at length 2 (renormalised), v2: +x with a mirrored bitangent.
+    const float tangents[12] = {0, 1, 0, 1, 0, 2, 0, 1, 1, 0, 0, -1};
+    TangentDoc t(tangents);
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(t.write(dir));
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err.find("TANGENT"), std::string::npos) << err;
+    expect_invariants(s);
+    ASSERT_GE(s.materials[0].normal_texture, 0);
+    ASSERT_EQ(s.tangents.size(), 3u);
+    EXPECT_EQ(s.tangents[0], glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(s.tangents[1], glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(s.tangents[2], glm::vec4(1, 0, 0, -1));
+
+    // A 90-degree turn about +z maps the tangents like directions: +y -> -x, +x -> +y.
+    t.doc.nodes = R"([{"mesh": 0, "rotation": [0, 0, 0.70710678, 0.70710678]}])";
+    const Scene r = load_scene(t.write(dir));
+    ASSERT_EQ(r.tangents.size(), 3u);
+    std::printf("  rotated tangents: (%.4f %.4f %.4f %g) (%.4f %.4f %.4f %g)\n", r.tangents[0].x, r.tangents[0].y,
+                r.tangents[0].z, r.tangents[0].w, r.tangents[2].x, r.tangents[2].y, r.tangents[2].z, r.tangents[2].w);
+    EXPECT_NEAR(r.tangents[0].x, -1.0f, 1e-6f);
+    EXPECT_NEAR(r.tangents[0].y, 0.0f, 1e-6f);
+    EXPECT_NEAR(r.tangents[2].y, 1.0f, 1e-6f);
+    EXPECT_EQ(r.tangents[2].w, -1.0f);
+
+    // A non-uniform scale maps them like directions too (not by the normals' inverse
+    // transpose): (1, 1, 0) scaled by (2, 1, 1) is along (2, 1, 0).
+    const float diagonal[12] = {1, 1, 0, 1, 1, 1, 0, 1, 1, 1, 0, 1};
+    TangentDoc d(diagonal);
+    d.doc.nodes = R"([{"mesh": 0, "scale": [2, 1, 1]}])";
+    const Scene sc = load_scene(d.write(dir));
+    ASSERT_EQ(sc.tangents.size(), 3u);
+    EXPECT_NEAR(sc.tangents[0].x, 2.0f / std::sqrt(5.0f), 1e-6f);
+    EXPECT_NEAR(sc.tangents[0].y, 1.0f / std::sqrt(5.0f), 1e-6f);
+
+    // A mirroring node swaps the winding (corners 1 and 2) and flips w, so B = w cross(N, T)
+    // still maps to the mirrored bitangent.
+    t.doc.nodes = R"([{"mesh": 0, "scale": [-1, 1, 1]}])";
+    const Scene m = load_scene(t.write(dir));
+    ASSERT_EQ(m.tangents.size(), 3u);
+    EXPECT_EQ(m.tangents[0], glm::vec4(0, 1, 0, -1));  // v0
+    EXPECT_EQ(m.tangents[1], glm::vec4(-1, 0, 0, 1));  // v2, mirrored
+    EXPECT_EQ(m.tangents[2], glm::vec4(0, 1, 0, -1));  // v1
+
+    // A zero tangent is "none" at that corner (the renderer then generates the triangle's).
+    const float zero_v1[12] = {0, 1, 0, 1, 0, 0, 0, 1, 1, 0, 0, 1};
+    const Scene z = load_scene(TangentDoc(zero_v1).write(dir));
+    ASSERT_EQ(z.tangents.size(), 3u);
+    EXPECT_EQ(z.tangents[1], glm::vec4(0.0f));
+
+    // Without a normal map nothing reads them, so they are not kept.
+    const Scene plain = load_scene(TangentDoc(tangents, false).write(dir));
+    EXPECT_TRUE(plain.tangents.empty());
+}
+
+TEST(GltfErrors, BadTangents)
+{
+    ScratchDir dir;
+    const float tangents[12] = {0, 1, 0, 1, 0, 1, 0, 1, 1, 0, 0, -1};
+    TangentDoc vec3(tangents, true, "VEC3");
+    expect_input_error([&] { load_scene(vec3.write(dir)); }, {"tri.gltf", "accessor 3", "VEC3 FLOAT", "VEC4 FLOAT"});
+    TangentDoc short_count(tangents);
+    short_count.doc.extra_accessors = R"(, {"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC4"})";
+    expect_input_error([&] { load_scene(short_count.write(dir)); }, {"tri.gltf", "TANGENT has 2 elements", "POSITION 3"});
+    float nan_w[12];
+    std::memcpy(nan_w, tangents, sizeof nan_w);
+    nan_w[7] = std::nanf("");
+    expect_input_error([&] { load_scene(TangentDoc(nan_w).write(dir)); }, {"tri.gltf", "accessor 3", "tangent 1", "not finite"});
 }
 
 TEST(GltfSynthetic, CameraAndPointLights)

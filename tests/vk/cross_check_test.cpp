@@ -82,7 +82,9 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"CornellGlossy", "cornell-box/CornellBox-Glossy.obj", true, 96},
                       SceneCase{"Bunny", "stanford-bunny/stanford-bunny.obj", true, 96},
                       SceneCase{"Spot", "spot/spot_textured.obj", true, 96},
-                      SceneCase{"BoxTextured", "box-textured/BoxTextured.gltf", true, 96}),
+                      SceneCase{"BoxTextured", "box-textured/BoxTextured.gltf", true, 96},
+                      // Normal map with authored TANGENTs: GLSL and OpenCL decode them alike.
+                      SceneCase{"Avocado", "avocado/Avocado.gltf", true, 96}),
     [](const ::testing::TestParamInfo<SceneCase>& param_info) { return std::string(param_info.param.name); });
 
 // The G-buffer itself, independent of OpenCL: sane values, and the time per frame.

@@ -330,8 +330,11 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
         settings.rr_depth = 9;
         settings.env_radiance = s.env;
         for (DeviceSlot& d : devices) {
-            const int samples = o.quick ? 1 : (d.info.is_gpu ? 20 : o.repeats);
+            const int samples = o.quick ? 1 : (d.info.is_gpu ? 64 : o.repeats);
             const double budget = o.quick ? 0.0 : (d.info.is_gpu ? 5.0 : 20.0);
+            // The renderer sizes its path slots for spp: small images then trace several
+            // samples per pass on a wide device, as geocold-cl does.
+            settings.spp = static_cast<std::uint32_t>(samples);
             const PathFigures pf = path_samples(*d.context, s.scene, bvh, s.camera, settings, samples, budget);
             const double sps = pf.pixels / median(pf.sample_seconds);
             json& j = out["path"][d.label()];
@@ -361,6 +364,42 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
     return out;
 }
 
+// Time to first image, each device in fresh child processes with fresh caches. Run before
+// this process opens any context: a GPU in exclusive-process compute mode (as on the lent
+// H200 node) cannot be opened by a child while the parent holds a context on it, and the
+// NVIDIA driver keeps its CUDA context alive after clReleaseContext.
+void bench_first_images(const Options& o, const std::vector<DeviceSlot>& devices, const std::vector<cl::DeviceInfo>& all,
+                        json& doc)
+{
+    if (o.first_image) {
+        say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
+        for (const DeviceSlot& d : devices) {
+            namespace fs = std::filesystem;
+            const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" +
+                                                                std::to_string(d.index));
+            fs::remove_all(root);
+            fs::create_directories(root);
+            const std::string key = device_key(d.info, all);
+            const FirstImage cold = run_first_image(key, root.string(), o.quick);
+            const FirstImage warm = run_first_image(key, root.string(), o.quick);
+            fs::remove_all(root);
+            for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
+                if (!fi.ok) {
+                    say("  %s %s: failed: %s\n", d.label().c_str(), label, fi.error.c_str());
+                    continue;
+                }
+                say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back %.3f s\n",
+                    d.label().c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
+                    fi.compile_seconds, fi.render_seconds);
+                doc["first_image"][d.label()][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
+                                                         {"compile_seconds", fi.compile_seconds},
+                                                         {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache}};
+            }
+        }
+    }
+
+}
+
 int run(int argc, char** argv)
 {
     const Options o = parse(argc, argv);
@@ -379,11 +418,12 @@ int run(int argc, char** argv)
         DeviceSlot slot;
         slot.index = static_cast<int>(i);
         slot.info = all[i];
-        slot.context = std::make_unique<cl::Context>(all[i]);
         devices.push_back(std::move(slot));
     }
 
     json doc;
+    bench_first_images(o, devices, all, doc);
+    for (DeviceSlot& d : devices) d.context = std::make_unique<cl::Context>(d.info);
     doc["embree"] = embree_available() ? embree_version() : "not built in";
     doc["threads"] = std::thread::hardware_concurrency();
     say("geocold-bench: %zu device(s), Embree %s, %u host threads%s\n", devices.size(),
@@ -412,36 +452,6 @@ int run(int argc, char** argv)
         const double load_s = seconds_since(start);
         doc["scenes"][name] = bench_scene(*scene, o, devices, summary);
         doc["scenes"][name]["load_seconds"] = load_s;
-    }
-
-    if (o.first_image) {
-        say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
-        // The children get each device to themselves: a GPU in exclusive-process compute mode
-        // cannot be opened while this process holds a context on it.
-        for (DeviceSlot& d : devices) d.context.reset();
-        for (DeviceSlot& d : devices) {
-            namespace fs = std::filesystem;
-            const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" +
-                                                                std::to_string(d.index));
-            fs::remove_all(root);
-            fs::create_directories(root);
-            const std::string key = device_key(d.info, all);
-            const FirstImage cold = run_first_image(key, root.string(), o.quick);
-            const FirstImage warm = run_first_image(key, root.string(), o.quick);
-            fs::remove_all(root);
-            for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
-                if (!fi.ok) {
-                    say("  %s %s: failed: %s\n", d.label().c_str(), label, fi.error.c_str());
-                    continue;
-                }
-                say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back %.3f s\n",
-                    d.label().c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
-                    fi.compile_seconds, fi.render_seconds);
-                doc["first_image"][d.label()][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
-                                                         {"compile_seconds", fi.compile_seconds},
-                                                         {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache}};
-            }
-        }
     }
 
     if (summary.contains("cornell_path") && summary["cornell_path"].contains("gpu") &&

@@ -99,10 +99,14 @@ PathFigures path_samples(const cl::Context& context, const Scene& scene, const F
     figures.wavefront = renderer.wavefront_size();
     renderer.render_sample(); // warm-up: PoCL builds its work-group functions on first launch
     const auto begin = Clock::now();
-    for (int s = 0; s < max_samples; ++s) {
+    // Small images trace several samples per pass (Renderer::render_samples); each sample
+    // is credited the pass's time divided by its samples.
+    for (int s = 0; s < max_samples;) {
         const auto start = Clock::now();
-        renderer.render_sample();
-        figures.sample_seconds.push_back(seconds_since(start));
+        const std::uint32_t done = renderer.render_samples(static_cast<std::uint32_t>(max_samples - s));
+        const double seconds = seconds_since(start);
+        for (std::uint32_t k = 0; k < done; ++k) figures.sample_seconds.push_back(seconds / done);
+        s += static_cast<int>(done);
         if (seconds_since(begin) > budget_seconds) break;
     }
     return figures;

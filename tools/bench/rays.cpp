@@ -139,13 +139,13 @@ TraversalCost traversal_cost(const FlatBvh& bvh, const std::vector<dev::GcRay>& 
     for (std::size_t k = 0; k < n; ++k) {
         const dev::GcRay& ray = rays[k];
         if (!dev::gc_ray_is_valid(ray)) continue;
-        const dev::GcRayPre r = dev::gc_ray_precompute(ray);
         float t_best = ray.dir_tmax.w;
         std::uint32_t best_prim = GC_INVALID;
         std::uint32_t stack_node[GC_BVH_STACK_SIZE];
         float stack_entry[GC_BVH_STACK_SIZE];
         std::uint32_t sp = 0;
         dev::GcBvhNode node = bvh.nodes[0];
+        const dev::GcRayPre r = dev::gc_ray_with_margin(dev::gc_ray_precompute(ray), GC_XYZ(node.lo), GC_XYZ(node.hi));
         if (!(dev::gc_intersect_aabb_pre(r, t_best, GC_XYZ(node.lo), GC_XYZ(node.hi)) < GC_AABB_MISS)) continue;
         bool done = false;
         for (;;) {
