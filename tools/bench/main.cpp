@@ -54,6 +54,7 @@ struct Options {
     bool rays = true;
     bool first_image = true;
     std::string first_image_child; // the device key (device_key()) in the child process
+    bool list_device_keys = false;  // child: print "<label>\t<key>" per selected device
 };
 
 double seconds_since(Clock::time_point start)
@@ -106,6 +107,7 @@ Options parse(int argc, char** argv)
         else if (a == "--no-rays") o.rays = false;
         else if (a == "--no-first-image") o.first_image = false;
         else if (a == "--first-image-child") o.first_image_child = value(i);
+        else if (a == "--list-device-keys") o.list_device_keys = true;
         else if (a == "--help" || a == "-h") {
             std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
                         "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
@@ -364,65 +366,92 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
     return out;
 }
 
-// Time to first image, each device in fresh child processes with fresh caches. Run before
-// this process opens any context: a GPU in exclusive-process compute mode (as on the lent
-// H200 node) cannot be opened by a child while the parent holds a context on it, and the
-// NVIDIA driver keeps its CUDA context alive after clReleaseContext.
-void bench_first_images(const Options& o, const std::vector<DeviceSlot>& devices, const std::vector<cl::DeviceInfo>& all,
-                        json& doc)
+// The devices this run measures (all, or the one --device names).
+std::vector<DeviceSlot> selected_devices(const Options& o, const std::vector<cl::DeviceInfo>& all)
 {
-    if (o.first_image) {
-        say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
-        for (const DeviceSlot& d : devices) {
-            namespace fs = std::filesystem;
-            const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" +
-                                                                std::to_string(d.index));
-            fs::remove_all(root);
-            fs::create_directories(root);
-            const std::string key = device_key(d.info, all);
-            const FirstImage cold = run_first_image(key, root.string(), o.quick);
-            const FirstImage warm = run_first_image(key, root.string(), o.quick);
-            fs::remove_all(root);
-            for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
-                if (!fi.ok) {
-                    say("  %s %s: failed: %s\n", d.label().c_str(), label, fi.error.c_str());
-                    continue;
-                }
-                say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back %.3f s\n",
-                    d.label().c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
-                    fi.compile_seconds, fi.render_seconds);
-                doc["first_image"][d.label()][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
-                                                         {"compile_seconds", fi.compile_seconds},
-                                                         {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache}};
+    std::vector<DeviceSlot> devices;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (o.device != "all" && cl::select_device(o.device, all).id != all[i].id) continue;
+        DeviceSlot slot;
+        slot.index = static_cast<int>(i);
+        slot.info = all[i];
+        devices.push_back(std::move(slot));
+    }
+    return devices;
+}
+
+// Child: one line per selected device, "<label>\t<key>".
+int list_device_keys(const Options& o)
+{
+    std::string why;
+    const std::vector<cl::DeviceInfo> all = cl::list_devices(&why);
+    for (const DeviceSlot& d : selected_devices(o, all)) std::printf("%s\t%s\n", d.label().c_str(), device_key(d.info, all).c_str());
+    return 0;
+}
+
+// Time to first image, each device in fresh child processes with fresh caches. The parent
+// must not have touched OpenCL yet: on the lent H200 node a child started after the parent
+// had merely enumerated the NVIDIA platform no longer saw it (while the same child started
+// from a shell did), so even the device list comes from a child here.
+void bench_first_images(const Options& o, json& doc)
+{
+    if (!o.first_image) return;
+    say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
+    std::vector<std::pair<std::string, std::string>> devices;  // label, key
+    {
+        const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
+        FILE* pipe = popen(("'" + exe + "' --list-device-keys --device '" + o.device + "'").c_str(), "r");
+        if (!pipe) {
+            say("  failed: cannot start the device-list child\n");
+            return;
+        }
+        char line[1024];
+        while (std::fgets(line, sizeof line, pipe)) {
+            std::string text(line);
+            while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+            const std::size_t tab = text.find('\t');
+            if (tab != std::string::npos) devices.emplace_back(text.substr(0, tab), text.substr(tab + 1));
+        }
+        pclose(pipe);
+    }
+    for (std::size_t i = 0; i < devices.size(); ++i) {
+        const auto& [name, key] = devices[i];
+        namespace fs = std::filesystem;
+        const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" + std::to_string(i));
+        fs::remove_all(root);
+        fs::create_directories(root);
+        const FirstImage cold = run_first_image(key, root.string(), o.quick);
+        const FirstImage warm = run_first_image(key, root.string(), o.quick);
+        fs::remove_all(root);
+        for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
+            if (!fi.ok) {
+                say("  %s %s: failed: %s\n", name.c_str(), label, fi.error.c_str());
+                continue;
             }
+            say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back %.3f s\n",
+                name.c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
+                fi.compile_seconds, fi.render_seconds);
+            doc["first_image"][name][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
+                                               {"compile_seconds", fi.compile_seconds},
+                                               {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache}};
         }
     }
-
 }
 
 int run(int argc, char** argv)
 {
     const Options o = parse(argc, argv);
     if (!o.first_image_child.empty()) return first_image_child(o.first_image_child, o.quick);
+    if (o.list_device_keys) return list_device_keys(o);
     if (o.json_out) g_text = stderr;
+
+    json doc;
+    bench_first_images(o, doc);
 
     std::string why;
     const std::vector<cl::DeviceInfo> all = cl::list_devices(&why);
     if (all.empty()) throw DeviceError("geocold-bench: no OpenCL device found: " + why);
-    std::vector<DeviceSlot> devices;
-    for (std::size_t i = 0; i < all.size(); ++i) {
-        if (o.device != "all") {
-            const cl::DeviceInfo chosen = cl::select_device(o.device, all);
-            if (chosen.id != all[i].id) continue;
-        }
-        DeviceSlot slot;
-        slot.index = static_cast<int>(i);
-        slot.info = all[i];
-        devices.push_back(std::move(slot));
-    }
-
-    json doc;
-    bench_first_images(o, devices, all, doc);
+    std::vector<DeviceSlot> devices = selected_devices(o, all);
     for (DeviceSlot& d : devices) d.context = std::make_unique<cl::Context>(d.info);
     doc["embree"] = embree_available() ? embree_version() : "not built in";
     doc["threads"] = std::thread::hardware_concurrency();
