@@ -1,6 +1,7 @@
 #include "host/scene/gltf_loader.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -36,6 +37,13 @@ constexpr std::uint64_t k_max_scene_triangles = std::uint64_t{1} << 27;
 constexpr std::uint64_t k_host_bytes_per_triangle = 512;
 // Most elements an accessor without a bufferView (all zeros, so unbounded by the file) may claim.
 constexpr std::size_t k_max_zero_elements = std::size_t{1} << 24;
+
+std::string gibibytes(std::uint64_t bytes)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", static_cast<double>(bytes) / double(1ull << 30));
+    return text;
+}
 
 std::uint64_t physical_memory_bytes()
 {
@@ -335,9 +343,9 @@ private:
         if (m_planned_triangles > k_max_scene_triangles || memory > physical_memory_bytes())
             fail("mesh instances add up to " + std::to_string(m_planned_triangles) + " triangles by instance " +
                  std::to_string(m_instances + 1) + " (mesh " + std::to_string(mesh_index) +
-                 "); instances are flattened, which would need about " + std::to_string(memory >> 30) +
-                 " GiB of host memory (this machine has " + std::to_string(physical_memory_bytes() >> 30) +
-                 " GiB; at most " + std::to_string(k_max_scene_triangles) + " triangles are supported)");
+                 "); instances are flattened, which would need about " + gibibytes(memory) +
+                 " of host memory (this machine has " + gibibytes(physical_memory_bytes()) + "; at most " +
+                 std::to_string(k_max_scene_triangles) + " triangles are supported)");
         ++m_instances;
     }
 
