@@ -20,17 +20,28 @@ bool bit_identical(const Film& a, const Film& b)
            std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(float)) == 0;
 }
 
+Scene load_cornell(const char* file)
+{
+    return load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box" / file);
+}
+
+// The references' view of the Cornell boxes (../shared/refs/*.json).
+Camera cornell_camera()
+{
+    Camera camera;
+    camera.look_from = Point3(0, 1, 3.9f);
+    camera.look_at = Point3(0, 1, 0);
+    camera.vfov_degrees = 39.3077f;
+    return camera;
+}
+
 class DeterminismTest : public cl::test::DeviceTest {};
 
 TEST_F(DeterminismTest, SameRenderTwiceIsBitIdentical)
 {
     // The mirror box: diffuse, mirror, NEE and Russian roulette all on the paths.
-    const Scene scene =
-        load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Mirror.obj");
-    Camera camera;
-    camera.look_from = Point3(0, 1, 3.9f);
-    camera.look_at = Point3(0, 1, 0);
-    camera.vfov_degrees = 39.3077f;
+    const Scene scene = load_cornell("CornellBox-Mirror.obj");
+    const Camera camera = cornell_camera();
     RenderSettings s;
     s.integrator = IntegratorKind::Path;
     s.width = 48;
@@ -59,12 +70,8 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     // A small image fills the wavefront with several samples per pixel (Renderer::
     // render_samples); accumulate.cl sums them in sample order, so the films must equal
     // one-sample-per-pass rendering bit for bit, whatever the grouping.
-    const Scene scene =
-        load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj");
-    Camera camera;
-    camera.look_from = Point3(0, 1, 3.9f);
-    camera.look_at = Point3(0, 1, 0);
-    camera.vfov_degrees = 39.3077f;
+    const Scene scene = load_cornell("CornellBox-Sphere.obj");
+    const Camera camera = cornell_camera();
     RenderSettings s;
     s.integrator = IntegratorKind::Path;
     s.width = 40;
