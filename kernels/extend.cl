@@ -16,7 +16,7 @@ __kernel void extend(const GcRenderParams params,
                      const uint queue_counter)
 {
     const uint q = get_global_id(0);
-    if (q >= counters[queue_counter] || q >= params.pixel_count * params.samples_in_pass) return;
+    if (q >= counters[queue_counter] || q >= gc_pass_paths(params)) return;
     const uint slot = ray_queue[q];
     hits[slot] = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, rays[slot]);
 }

@@ -11,7 +11,7 @@ __kernel void generate(const GcRenderParams params,
                        __global uint* counters)
 {
     const uint slot = get_global_id(0);
-    if (slot >= params.pixel_count * params.samples_in_pass) return;
+    if (slot >= gc_pass_paths(params)) return;
     const uint pixel = params.pixel_offset + slot % params.pixel_count;
     const uint sample = params.sample_index + slot / params.pixel_count;
     const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);

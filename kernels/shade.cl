@@ -26,7 +26,7 @@ __kernel void shade(const GcRenderParams params,
                     const uint counter_out)
 {
     const uint q = get_global_id(0);
-    if (q >= counters[counter_in] || q >= params.pixel_count * params.samples_in_pass) return;
+    if (q >= counters[counter_in] || q >= gc_pass_paths(params)) return;
     const uint slot = queue_in[q];
     const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, paths[slot], rays[slot], hits[slot]);
     paths[slot] = res.path;

@@ -17,7 +17,7 @@ __kernel void shadow(const GcRenderParams params,
                      __global const uint* counters)
 {
     const uint q = get_global_id(0);
-    if (q >= counters[GC_COUNTER_SHADOW] || q >= params.pixel_count * params.samples_in_pass) return;
+    if (q >= counters[GC_COUNTER_SHADOW] || q >= gc_pass_paths(params)) return;
     const GcShadowRay s = shadow_rays[q];
     if (!gc_trace_any(nodes, tris, GC_ALPHA_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
 }

@@ -15,6 +15,9 @@ GC_FUNC bool gc_node_is_leaf(GcBvhNode n) { return gc_node_count(n) != 0u; }
 GC_FUNC uint gc_triangle_prim(GcTriangle t) { return gc_as_uint(t.v0.w); }
 GC_FUNC uint gc_triangle_flags(GcTriangle t) { return gc_as_uint(t.v1.w); }
 
+/* Path slots of a wavefront pass: samples_in_pass samples of pixel_count pixels. */
+GC_FUNC uint gc_pass_paths(GcRenderParams p) { return p.pixel_count * p.samples_in_pass; }
+
 GC_FUNC float gc_ray_tmin(GcRay r) { return r.org_tmin.w; }
 GC_FUNC float gc_ray_tmax(GcRay r) { return r.dir_tmax.w; }
 GC_FUNC GcRay gc_make_ray(float3 org, float3 dir, float tmin, float tmax)
