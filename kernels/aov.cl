@@ -6,6 +6,7 @@
  * owns its film slot, so the sum needs no atomics.
  */
 #include "gc_aov.h"
+#include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as the path kernels */
 #include "gc_traverse.h"
 
 __kernel void aov_render(const GcRenderParams params,
@@ -26,6 +27,6 @@ __kernel void aov_render(const GcRenderParams params,
     if (i >= params.pixel_count) return;
     const uint pixel = params.pixel_offset + i;
     const GcRay ray = gc_aov_camera_ray(params, pixel);
-    const GcHit hit = gc_trace_closest(nodes, tris, ray);
+    const GcHit hit = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, ray);
     film[pixel] += (float4)(gc_aov_value(GC_SHADE_ARGS, params, ray, hit), 1.0f);
 }

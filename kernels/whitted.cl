@@ -42,6 +42,7 @@
 #include "gc_rng.h"
 #include "gc_shading.h"
 #include "gc_texture.h"
+#include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as the path kernels */
 #include "gc_traverse.h"
 #include "gc_whitted.h"
 
@@ -64,13 +65,13 @@ static float gc_whitted_priority(float3 w) { return fmax(w.x, fmax(w.y, w.z)); }
 
 /* True when nothing blocks the segment from `origin` to `target` (both already offset off
  * their surfaces). */
-static bool gc_whitted_unoccluded(__global const GcBvhNode* nodes, __global const GcTriangle* tris,
+static bool gc_whitted_unoccluded(__global const GcBvhNode* nodes, __global const GcTriangle* tris, GC_ALPHA_PARAMS,
                                   float3 origin, float3 target)
 {
     const float3 d = target - origin;
     const float len = length(d);
     if (!(len > 0.0f)) return true;
-    return !gc_trace_any(nodes, tris, gc_make_ray(origin, d / len, 0.0f, len));
+    return !gc_trace_any(nodes, tris, GC_ALPHA_ARGS, gc_make_ray(origin, d / len, 0.0f, len));
 }
 
 /* Pushes (ray, weight, depth); on a full stack replaces the lightest entry if the new one is
@@ -129,7 +130,7 @@ __kernel void whitted_render(const GcRenderParams params,
         const float3 weight = stack_weight[sp];
         const uint depth = stack_depth[sp];
 
-        const GcHit hit = gc_trace_closest(nodes, tris, ray);
+        const GcHit hit = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, ray);
         if (hit.prim == GC_INVALID) {
             L += weight * env;
             continue;
@@ -155,7 +156,7 @@ __kernel void whitted_render(const GcRenderParams params,
                 const float3 brdf_cos = gc_whitted_brdf_cos(m, albedo, s.ns, s.ng, wo, wi);
                 const float3 c = gc_whitted_point_light(brdf_cos, light.intensity.xyz, dist2);
                 if (gc_whitted_nonzero(c) &&
-                    gc_whitted_unoccluded(nodes, tris, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
+                    gc_whitted_unoccluded(nodes, tris, GC_ALPHA_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
                                           light.position.xyz))
                     direct += c;
             }
@@ -178,7 +179,7 @@ __kernel void whitted_render(const GcRenderParams params,
                         const float3 c = gc_whitted_area_light(brdf_cos, lm.emission.xyz, cos_light, dist2,
                                                                e.pmf / e.area);
                         if (gc_whitted_nonzero(c) &&
-                            gc_whitted_unoccluded(nodes, tris, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
+                            gc_whitted_unoccluded(nodes, tris, GC_ALPHA_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
                                                   gc_offset_ray_origin(p_light, gc_whitted_side(la.ng.xyz, -wi))))
                             direct += c;
                     }

@@ -232,6 +232,7 @@ Scene lit_floor(bool cut_out_quad, bool quad_opaque)
     light.albedo = glm::vec3(0.0f);
     light.emission = glm::vec3(10.0f);
     Material quad;
+    quad.albedo = glm::vec3(0.2f, 0.3f, 0.9f); // unlike the floor, so an AOV shows which one is seen
     quad.alpha_mode = AlphaMode::Mask;
     quad.alpha_cutoff = 0.5f;
     quad.opacity = quad_opaque ? 1.0f : 0.0f;
@@ -309,6 +310,40 @@ TEST_F(AlphaMaskDevice, LightBehindCutOutLightsFloor)
     EXPECT_EQ(differing, 0u) << "pixels that differ with the cut-away quad present";
     EXPECT_NEAR(cut.mean, expected, 0.03 * expected + 5.0 * cut.sigma);
     EXPECT_LT(closed.mean, 0.01 * expected) << "an opaque quad must shadow the floor";
+}
+
+// The AOV and Whitted integrators trace through the same alpha hook (aov.cl, whitted.cl): a
+// camera above the cut-away quad sees the lit floor exactly as without the quad, and an opaque
+// quad hides it.
+TEST_F(AlphaMaskDevice, AovAndWhittedSeeThroughCutOut)
+{
+    Camera camera;
+    camera.look_from = Point3(0, 3, 0);
+    camera.look_at = Point3(0, 0, 0);
+    camera.up = Vec3(0, 0, -1);
+    camera.vfov_degrees = 20.0f;
+    RenderSettings s;
+    s.width = 16;
+    s.height = 16;
+    s.spp = 2;
+    s.seed = 3;
+    for (const IntegratorKind kind : {IntegratorKind::Aov, IntegratorKind::Whitted}) {
+        s.integrator = kind;
+        s.aov = AovKind::Albedo;
+        const Film open = validation::render(*context, lit_floor(false, false), camera, s).mean;
+        const Film cut = validation::render(*context, lit_floor(true, false), camera, s).mean;
+        const Film closed = validation::render(*context, lit_floor(true, true), camera, s).mean;
+        std::size_t cut_differs = 0, closed_differs = 0;
+        for (int y = 0; y < s.height; ++y)
+            for (int x = 0; x < s.width; ++x) {
+                cut_differs += open.at(x, y) != cut.at(x, y);
+                closed_differs += open.at(x, y) != closed.at(x, y);
+            }
+        std::printf("[alpha] %s: pixels differing from no quad: cut-away quad %zu, opaque quad %zu of %d\n",
+                    integrator_name(kind), cut_differs, closed_differs, s.width * s.height);
+        EXPECT_EQ(cut_differs, 0u) << integrator_name(kind);
+        EXPECT_GT(closed_differs, 0u) << integrator_name(kind) << ": the opaque quad must show";
+    }
 }
 
 }  // namespace
