@@ -44,8 +44,8 @@
  * Alpha test (glTF alphaMode MASK): a triangle whose GcTriangle flags carry
  * GC_TRI_ALPHA_TESTED is a candidate only where GC_ALPHA_TEST(scene_tri, u, v) is true
  * (solid); a candidate that fails is ignored by closest and any hit alike, as if the ray had
- * missed it. The default hook says "solid", so kernels that need no textures (trace.cl,
- * aov.cl, the host's plain reference) compile the test away. The path kernels include
+ * missed it. Without a GC_ALPHA_TEST definition (trace.cl, the host's plain reference) the
+ * test is not compiled at all: every triangle is solid. The path kernels include
  * gc_alpha.h first, which widens GC_BVH_PARAMS by the material buffers and defines the hook.
  * Whether a triangle is solid at (u, v) is a pure function of the triangle, so the tie rule
  * and the brute-force equality above still hold (the brute force applies the same test).
@@ -60,9 +60,6 @@
 #define GC_BVH_ARGS gc_bvh_nodes, gc_bvh_tris
 #define GC_BVH_NODE(i) gc_bvh_nodes[i]
 #define GC_BVH_TRI(i) gc_bvh_tris[i]
-#endif
-#ifndef GC_ALPHA_TEST
-#define GC_ALPHA_TEST(scene_tri, u, v) true
 #endif
 
 /* Private stack: 64 node indices plus their entry distances (512 bytes). */
@@ -106,7 +103,9 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
                 if (h.prim == GC_INVALID) continue;
                 uint prim = gc_triangle_prim(tri);
                 if (prim == GC_INVALID) continue; /* the empty scene's dummy */
+#if defined(GC_ALPHA_TEST)
                 if ((gc_triangle_flags(tri) & GC_TRI_ALPHA_TESTED) != 0u && !(GC_ALPHA_TEST(prim, h.u, h.v))) continue;
+#endif
                 if (h.t < t_best || prim < best.prim) {
                     /* h.t <= t_best here, so this is lexicographic (t, prim) order. */
                     best = h;
