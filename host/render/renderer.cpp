@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "host/render/environment.h"
@@ -21,11 +22,18 @@ void zero_counters(const cl::Context& context, const cl::Buffer<std::uint32_t>& 
 
 }  // namespace
 
-const char* integrator_program(IntegratorKind kind)
+bool path_megakernel_for(const cl::DeviceInfo& device)
+{
+    // GEOCOLD_PATH_KERNEL=wavefront|megakernel overrides the choice (benchmarking, A/B).
+    if (const char* env = std::getenv("GEOCOLD_PATH_KERNEL"); env && *env) return std::string(env) == "megakernel";
+    return !device.is_gpu;
+}
+
+const char* integrator_program(IntegratorKind kind, bool megakernel)
 {
     switch (kind) {
     case IntegratorKind::Aov: return "aov.cl";
-    case IntegratorKind::Path: return "wavefront.cl";
+    case IntegratorKind::Path: return megakernel ? "megakernel.cl" : "wavefront.cl";
     case IntegratorKind::Whitted: return "whitted.cl";
     }
     return "aov.cl";
@@ -43,7 +51,8 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
       m_scene(DeviceScene::upload(context, scene, bvh,
                                   settings.env_map_path.empty() ? EnvironmentMap{}
                                                                 : load_environment_map(settings.env_map_path))),
-      m_program(context, integrator_program(settings.integrator))
+      m_megakernel(settings.integrator == IntegratorKind::Path && path_megakernel_for(context.device())),
+      m_program(context, integrator_program(settings.integrator, m_megakernel))
 {
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
@@ -70,6 +79,8 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
 
     if (settings.integrator == IntegratorKind::Aov) {
         m_aov = m_program.kernel("aov_render");
+    } else if (settings.integrator == IntegratorKind::Path && m_megakernel) {
+        m_path_megakernel = m_program.kernel("path_megakernel");
     } else if (settings.integrator == IntegratorKind::Path) {
         m_rays = cl::Buffer<dev::GcRay>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path rays");
         m_hits = cl::Buffer<dev::GcHit>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path hits");
@@ -107,6 +118,7 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
         m_params.pixel_count = std::min(m_batch, pixels - offset);
         if (m_settings.integrator == IntegratorKind::Aov) run_aov_batch();
         else if (m_settings.integrator == IntegratorKind::Whitted) run_whitted_batch(); // [whitted hook]
+        else if (m_megakernel) run_megakernel_batch();
         else run_path_batch();
     }
     m_context.finish();
@@ -128,6 +140,15 @@ void Renderer::run_whitted_batch()
     m_whitted.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials,
                        m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights, m_film);
     m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
+}
+
+// One work-item per pixel of the batch runs its samples of the pass from camera to end.
+void Renderer::run_megakernel_batch()
+{
+    m_path_megakernel.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials,
+                               m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights,
+                               m_scene.env_pixels, m_scene.env_marginal, m_scene.env_conditional, m_film, m_film_squares);
+    m_path_megakernel.launch(m_context, m_params.pixel_count, 0, "paths (megakernel)");
 }
 
 void Renderer::run_path_batch()

@@ -48,12 +48,14 @@ public:
 private:
     void run_aov_batch();
     void run_path_batch();
+    void run_megakernel_batch();
     void run_whitted_batch(); // [whitted hook]
 
     const cl::Context& m_context;
     RenderSettings m_settings;
     DeviceScene m_scene;
     dev::GcRenderParams m_params{};
+    bool m_megakernel = false;  // path integrator as megakernel.cl (before m_program: it picks the file)
     cl::Program m_program;
     std::uint32_t m_batch = 0;          // pixels per pass
     std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
@@ -77,10 +79,14 @@ private:
     cl::Kernel m_shadow;
     cl::Kernel m_accumulate;
     cl::Kernel m_whitted; // [whitted hook]
+    cl::Kernel m_path_megakernel;
 };
 
 // The program file each integrator is built from.
-const char* integrator_program(IntegratorKind kind);
+// The path integrator's form on `device`: one kernel per path (megakernel.cl) on CPUs, the
+// wavefront stages (wavefront.cl) on GPUs; both give the same bits on one device.
+bool path_megakernel_for(const cl::DeviceInfo& device);
+const char* integrator_program(IntegratorKind kind, bool megakernel);
 
 // Default paths in flight per pass: enough to fill a GPU, small enough for a CPU's caches.
 std::uint32_t default_wavefront_size(const cl::DeviceInfo& device);
