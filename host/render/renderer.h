@@ -36,6 +36,7 @@ public:
 
     std::uint32_t samples_done() const { return m_samples; }
     std::uint32_t wavefront_size() const { return m_batch; }
+    bool uses_megakernel() const { return m_megakernel; }
     const cl::Program& program() const { return m_program; }
     const DeviceScene& device_scene() const { return m_scene; }
 

@@ -342,6 +342,7 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
             json& j = out["path"][d.label()];
             j = {{"width", settings.width}, {"height", settings.height}, {"samples_per_s", sps},
                  {"samples_timed", pf.sample_seconds.size()}, {"wavefront", pf.wavefront},
+                 {"form", pf.megakernel ? "megakernel" : "wavefront"},
                  {"device_bytes", pf.scene_bytes}, {"device_bytes_per_triangle", pf.scene_bytes / double(std::max<std::size_t>(tris, 1))}};
             std::string anchor;
             if (d.info.is_cpu && !d.info.is_gpu && (s.name == "cornell" || s.name == "tiny")) {
@@ -357,8 +358,9 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
                 anchor = "; " + ratio(sps, mitsuba) + " Mitsuba cuda_ad_rgb on an H200 (" +
                          std::to_string(int(mitsuba / 1e6)) + " M)";
             }
-            say("  path %s: %dx%d depth 8, %.4f Msamples/s (median of %zu), wavefront %u, %.1f device bytes/triangle%s\n",
-                d.label().c_str(), settings.width, settings.height, sps / 1e6, pf.sample_seconds.size(), pf.wavefront,
+            say("  path %s: %dx%d depth 8, %.4f Msamples/s (median of %zu), %s %u, %.1f device bytes/triangle%s\n",
+                d.label().c_str(), settings.width, settings.height, sps / 1e6, pf.sample_seconds.size(),
+                pf.megakernel ? "megakernel, pixels per pass" : "wavefront", pf.wavefront,
                 pf.scene_bytes / double(std::max<std::size_t>(tris, 1)), anchor.c_str());
             if (s.name == "cornell" || s.name == "tiny") summary["cornell_path"][d.info.is_gpu ? "gpu" : "cpu"] = sps;
         }

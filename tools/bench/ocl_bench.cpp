@@ -97,6 +97,7 @@ PathFigures path_samples(const cl::Context& context, const Scene& scene, const F
     figures.pixels = double(settings.width) * double(settings.height);
     figures.scene_bytes = double(renderer.device_scene().bytes());
     figures.wavefront = renderer.wavefront_size();
+    figures.megakernel = renderer.uses_megakernel();
     renderer.render_sample(); // warm-up: PoCL builds its work-group functions on first launch
     const auto begin = Clock::now();
     // Small images trace several samples per pass (Renderer::render_samples); each sample

@@ -48,7 +48,8 @@ struct PathFigures {
     std::vector<double> sample_seconds; // one entry per timed sample (all pixels once)
     double pixels = 0.0;
     double scene_bytes = 0.0;           // DeviceScene::bytes()
-    std::uint32_t wavefront = 0;
+    std::uint32_t wavefront = 0;  // pixels per pass
+    bool megakernel = false;      // the path integrator ran as megakernel.cl (CPUs), else wavefront.cl
 };
 // Path-traces `settings` (one warm-up sample, then up to max_samples timed samples, stopping
 // early once budget_seconds have passed).
