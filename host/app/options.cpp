@@ -255,6 +255,9 @@ Environment:
   GEOCOLD_KERNEL_DIR       where the OpenCL kernels are (default: built-in path)
   GEOCOLD_CACHE_DIR        kernel binary cache (default: $XDG_CACHE_HOME/geocold-cl)
   GEOCOLD_NO_CACHE=1       do not read or write the kernel binary cache
+  GEOCOLD_CACHE_ALWAYS=1   write it on PoCL too (by default PoCL's own cache is used there)
+  GEOCOLD_PATH_KERNEL      wavefront|megakernel: the path integrator's form (default:
+                           megakernel on CPUs, wavefront on GPUs; same image either way)
 
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file

@@ -25,7 +25,12 @@ void zero_counters(const cl::Context& context, const cl::Buffer<std::uint32_t>& 
 bool path_megakernel_for(const cl::DeviceInfo& device)
 {
     // GEOCOLD_PATH_KERNEL=wavefront|megakernel overrides the choice (benchmarking, A/B).
-    if (const char* env = std::getenv("GEOCOLD_PATH_KERNEL"); env && *env) return std::string(env) == "megakernel";
+    if (const char* env = std::getenv("GEOCOLD_PATH_KERNEL"); env && *env) {
+        const std::string form(env);
+        if (form != "megakernel" && form != "wavefront")
+            throw UsageError("GEOCOLD_PATH_KERNEL must be 'wavefront' or 'megakernel', not '" + form + "'");
+        return form == "megakernel";
+    }
     return !device.is_gpu;
 }
 

@@ -116,6 +116,22 @@ TEST(Cli, UnsupportedOutputFormatLeavesExistingFileAlone)
 
 // A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the
 // write fails after the render, and the previous image must survive byte for byte.
+TEST(Cli, BadPathKernelVariableIsAUsageError)
+{
+    if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
+    const TempDir dir;
+    RunOptions options = cli_options();
+    options.env["GEOCOLD_PATH_KERNEL"] = "mega";
+    const RunResult r = run_process(
+        cli_path(), {k_cornell.string(), "--spp", "1", "--res", "8x8", "--device", "cpu", "-o", (dir / "out.ppm").string()},
+        options);
+    show("GEOCOLD_PATH_KERNEL=mega", r);
+    EXPECT_EQ(r.signal, 0) << r.describe();
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("GEOCOLD_PATH_KERNEL must be 'wavefront' or 'megakernel', not 'mega'"), std::string::npos) << r.err;
+    EXPECT_TRUE(dir.entries().empty()) << "an image was written";
+}
+
 TEST(Cli, FullDiskKeepsThePreviousImage)
 {
     if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
