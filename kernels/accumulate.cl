@@ -3,6 +3,8 @@
  * order, so every pixel's sums are formed in the same order — bit-identical whether a pass
  * holds one sample or many, and run to run. The squares give the per-pixel sample variance
  * that the image tests' Z-test needs. */
+#include "gc_path.h"
+
 __kernel void accumulate(const GcRenderParams params,
                          __global const GcPathState* paths,
                          __global float4* film,
@@ -14,11 +16,7 @@ __kernel void accumulate(const GcRenderParams params,
     float4 sum = film[pixel];
     float4 squares = film_squares[pixel];
     for (uint s = 0u; s < params.samples_in_pass; ++s) {
-        const GcPathState path = paths[s * params.pixel_count + slot];
-        /* A NaN or infinite sample would poison the pixel forever: drop it (counted as black). */
-        const float3 L = path.radiance.xyz;
-        const bool finite = isfinite(L.x) && isfinite(L.y) && isfinite(L.z);
-        const float3 sample = finite ? L : (float3)(0.0f);
+        const float3 sample = gc_film_value(paths[s * params.pixel_count + slot].radiance.xyz);
         sum += (float4)(sample, 1.0f);
         squares += (float4)(sample * sample, 0.0f);
     }

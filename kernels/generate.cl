@@ -2,6 +2,7 @@
  * holds params.samples_in_pass consecutive samples of the batch's pixels: slot
  * s * pixel_count + p is sample sample_index + s of pixel pixel_offset + p. */
 #include "gc_camera.h"
+#include "gc_path.h"
 #include "gc_rng.h"
 
 __kernel void generate(const GcRenderParams params,
@@ -17,13 +18,6 @@ __kernel void generate(const GcRenderParams params,
     const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
     rays[slot] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
                                pixel / params.width, jitter.x, jitter.y);
-    GcPathState path;
-    path.throughput = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
-    path.radiance = (float4)(0.0f, 0.0f, 0.0f, 1.0f); /* w: eta^2 scale for Russian roulette */
-    path.pixel = pixel;
-    path.depth = 0u;
-    path.flags = GC_PATH_SPECULAR; /* a camera ray sees emitters with full weight */
-    path.sample = sample;
-    paths[slot] = path;
+    paths[slot] = gc_path_start(pixel, sample);
     ray_queue[atomic_inc(&counters[GC_COUNTER_RAYS_A])] = slot;
 }

@@ -43,13 +43,7 @@ __kernel void path_megakernel(const GcRenderParams params,
         const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
         GcRay ray = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
                                   pixel / params.width, jitter.x, jitter.y);
-        GcPathState path;
-        path.throughput = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
-        path.radiance = (float4)(0.0f, 0.0f, 0.0f, 1.0f); /* w: eta^2 scale for Russian roulette */
-        path.pixel = pixel;
-        path.depth = 0u;
-        path.flags = GC_PATH_SPECULAR;
-        path.sample = sample;
+        GcPathState path = gc_path_start(pixel, sample);
 
         /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
         for (;;) {
@@ -62,10 +56,8 @@ __kernel void path_megakernel(const GcRenderParams params,
             ray = res.next;
         }
 
-        /* accumulate.cl: a NaN or infinite sample counts as black. */
-        const float3 L = path.radiance.xyz;
-        const bool finite = isfinite(L.x) && isfinite(L.y) && isfinite(L.z);
-        const float3 value = finite ? L : (float3)(0.0f);
+        /* accumulate.cl */
+        const float3 value = gc_film_value(path.radiance.xyz);
         sum += (float4)(value, 1.0f);
         squares += (float4)(value * value, 0.0f);
     }

@@ -70,6 +70,30 @@ GC_FUNC float gc_light_pdf_w(float3 emission, float emitter_power, float distanc
     return pdf_area * distance * distance / fabs(cos_light);
 }
 
+/* A fresh path for `sample` of `pixel`: unit throughput, no radiance yet (w, the product of
+ * eta^2 over refractions that Russian roulette undoes, starts at 1), and the specular flag,
+ * so the camera ray sees emitters with full weight. */
+GC_FUNC GcPathState gc_path_start(uint pixel, uint sample)
+{
+    GcPathState path;
+    path.throughput = make_float4(1.0f, 1.0f, 1.0f, 0.0f);
+    path.radiance = make_float4(0.0f, 0.0f, 0.0f, 1.0f);
+    path.pixel = pixel;
+    path.depth = 0u;
+    path.flags = GC_PATH_SPECULAR;
+    path.sample = sample;
+    return path;
+}
+
+#if defined(GC_OPENCL)
+/* What a finished path adds to its pixel: its radiance, or black when any channel is NaN or
+ * infinite (one such sample would poison the pixel's sum forever). */
+GC_FUNC float3 gc_film_value(float3 L)
+{
+    return (isfinite(L.x) && isfinite(L.y) && isfinite(L.z)) ? L : (float3)(0.0f);
+}
+#endif
+
 GC_NAMESPACE_END
 
 #endif /* GC_PATH_H */

@@ -29,13 +29,7 @@ void main()
     const vec4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
     GcRay ray = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
                               pixel / params.width, jitter.x, jitter.y);
-    GcPathState path;
-    path.throughput = vec4(1.0f, 1.0f, 1.0f, 0.0f);
-    path.radiance = vec4(0.0f, 0.0f, 0.0f, 1.0f); /* w: eta^2 scale for Russian roulette */
-    path.pixel = pixel;
-    path.depth = 0u;
-    path.flags = GC_PATH_SPECULAR;
-    path.sample = params.sample_index;
+    GcPathState path = gc_path_start(pixel, params.sample_index);
 
     /* extend -> shade -> shadow until the path ends (at most max_depth vertices). */
     for (;;) {
