@@ -10,8 +10,8 @@
 #include "gc_traverse.h"
 
 __kernel void aov_render(const GcRenderParams params,
-                         __global const GcBvhNode* nodes,
-                         __global const GcTriangle* tris,
+                         __global const GcTraversalNode* nodes,
+                         __global const GcTraversalTriangle* tris,
                          __global const GcTriangleAttribs* attribs,
                          __global const GcMaterial* materials,
                          __global const GcTexture* textures,

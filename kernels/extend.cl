@@ -3,8 +3,8 @@
 #include "gc_traverse.h"
 
 __kernel void extend(const GcRenderParams params,
-                     __global const GcBvhNode* nodes,
-                     __global const GcTriangle* tris,
+                     __global const GcTraversalNode* nodes,
+                     __global const GcTraversalTriangle* tris,
                      __global const GcTriangleAttribs* attribs,
                      __global const GcMaterial* materials,
                      __global const GcTexture* textures,

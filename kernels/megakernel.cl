@@ -18,8 +18,8 @@
 #include "gc_rng.h"
 
 __kernel void path_megakernel(const GcRenderParams params,
-                              __global const GcBvhNode* nodes,
-                              __global const GcTriangle* tris,
+                              __global const GcTraversalNode* nodes,
+                              __global const GcTraversalTriangle* tris,
                               __global const GcTriangleAttribs* attribs,
                               __global const GcMaterial* materials,
                               __global const GcTexture* textures,

@@ -5,8 +5,8 @@
  */
 #include "gc_traverse.h"
 
-__kernel void trace_closest(__global const GcBvhNode* nodes,
-                            __global const GcTriangle* tris,
+__kernel void trace_closest(__global const GcTraversalNode* nodes,
+                            __global const GcTraversalTriangle* tris,
                             __global const GcRay* rays,
                             __global GcHit* hits,
                             const uint count)
@@ -16,8 +16,8 @@ __kernel void trace_closest(__global const GcBvhNode* nodes,
     hits[i] = gc_trace_closest(nodes, tris, rays[i]);
 }
 
-__kernel void trace_any(__global const GcBvhNode* nodes,
-                        __global const GcTriangle* tris,
+__kernel void trace_any(__global const GcTraversalNode* nodes,
+                        __global const GcTraversalTriangle* tris,
                         __global const GcRay* rays,
                         __global uint* occluded,
                         const uint count)

@@ -65,8 +65,8 @@ static float gc_whitted_priority(float3 w) { return fmax(w.x, fmax(w.y, w.z)); }
 
 /* True when nothing blocks the segment from `origin` to `target` (both already offset off
  * their surfaces). */
-static bool gc_whitted_unoccluded(__global const GcBvhNode* nodes, __global const GcTriangle* tris, GC_ALPHA_PARAMS,
-                                  float3 origin, float3 target)
+static bool gc_whitted_unoccluded(__global const GcTraversalNode* nodes, __global const GcTraversalTriangle* tris,
+                                  GC_ALPHA_PARAMS, float3 origin, float3 target)
 {
     const float3 d = target - origin;
     const float len = length(d);
@@ -96,8 +96,8 @@ static void gc_whitted_push(GcRay* stack_ray, float3* stack_weight, uint* stack_
 }
 
 __kernel void whitted_render(const GcRenderParams params,
-                             __global const GcBvhNode* nodes,
-                             __global const GcTriangle* tris,
+                             __global const GcTraversalNode* nodes,
+                             __global const GcTraversalTriangle* tris,
                              __global const GcTriangleAttribs* attribs,
                              __global const GcMaterial* materials,
                              __global const GcTexture* textures,

@@ -258,6 +258,8 @@ Environment:
   GEOCOLD_CACHE_ALWAYS=1   write it on PoCL too (by default PoCL's own cache is used there)
   GEOCOLD_PATH_KERNEL      wavefront|megakernel: the path integrator's form (default:
                            megakernel on CPUs, wavefront on GPUs; same image either way)
+  GEOCOLD_BVH_WIDTH        2|4: the BVH layout traversed (default: 4 on CPUs, where one
+                           ray tests 4 boxes at once, 2 on GPUs; same image either way)
 
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file

@@ -19,7 +19,7 @@ cl::Buffer<T> upload_buffer(const cl::Context& context, const std::vector<T>& da
 
 std::uint64_t DeviceScene::bytes() const
 {
-    return nodes.bytes() + triangles.bytes() + attribs.bytes() + materials.bytes() + textures.bytes() +
+    return bvh.bytes() + attribs.bytes() + materials.bytes() + textures.bytes() +
            texels.bytes() + emitters.bytes() + point_lights.bytes() + env_pixels.bytes() + env_marginal.bytes() +
            env_conditional.bytes();
 }
@@ -31,8 +31,7 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     const DeviceTextures textures = make_textures(scene);
     const std::vector<dev::GcEmitter> emitters = make_emitters(scene);
     const std::vector<dev::GcPointLight> lights = make_point_lights(scene);
-    d.nodes = upload_buffer(context, bvh.nodes, "bvh nodes");
-    d.triangles = upload_buffer(context, bvh.triangles, "bvh triangles");
+    d.bvh = DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()));
     d.attribs = upload_buffer(context, make_triangle_attribs(scene), "triangle attributes");
     d.materials = upload_buffer(context, make_materials(scene), "materials");
     d.textures = upload_buffer(context, textures.textures, "textures");

@@ -1,4 +1,4 @@
-// A scene resident on one OpenCL device: the BVH, triangles, shading attributes,
+// A scene resident on one OpenCL device: the BVH in the device's layout, shading attributes,
 // materials, textures and lights, in the layouts of kernels/shared/gc_types.h.
 #pragma once
 
@@ -7,14 +7,14 @@
 #include "gc_types.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/buffer.h"
+#include "host/render/device_bvh.h"
 #include "host/render/environment.h"
 #include "host/scene/scene.h"
 
 namespace gc {
 
 struct DeviceScene {
-    cl::Buffer<dev::GcBvhNode> nodes;
-    cl::Buffer<dev::GcTriangle> triangles;
+    DeviceBvh bvh;  // BVH2 or BVH4, as bvh_layout_for(device) chose
     cl::Buffer<dev::GcTriangleAttribs> attribs;
     cl::Buffer<dev::GcMaterial> materials;
     cl::Buffer<dev::GcTexture> textures;

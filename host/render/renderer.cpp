@@ -57,7 +57,8 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
                                   settings.env_map_path.empty() ? EnvironmentMap{}
                                                                 : load_environment_map(settings.env_map_path))),
       m_megakernel(settings.integrator == IntegratorKind::Path && path_megakernel_for(context.device())),
-      m_program(context, integrator_program(settings.integrator, m_megakernel))
+      m_program(context, integrator_program(settings.integrator, m_megakernel),
+                program_options(m_scene.bvh.layout()))
 {
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
@@ -133,8 +134,8 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
 
 void Renderer::run_aov_batch()
 {
-    m_aov.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
-                   m_scene.texels, m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
+    m_aov.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs, m_scene.materials,
+                   m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
                    m_scene.env_conditional, m_film);
     m_aov.launch(m_context, m_params.pixel_count, 0, "first-hit AOVs");
 }
@@ -142,7 +143,7 @@ void Renderer::run_aov_batch()
 // [whitted hook] One work-item per pixel of the batch, like run_aov_batch.
 void Renderer::run_whitted_batch()
 {
-    m_whitted.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials,
+    m_whitted.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs, m_scene.materials,
                        m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights, m_film);
     m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
 }
@@ -150,8 +151,8 @@ void Renderer::run_whitted_batch()
 // One work-item per pixel of the batch runs its samples of the pass from camera to end.
 void Renderer::run_megakernel_batch()
 {
-    m_path_megakernel.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials,
-                               m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights,
+    m_path_megakernel.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs,
+                               m_scene.materials, m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights,
                                m_scene.env_pixels, m_scene.env_marginal, m_scene.env_conditional, m_film, m_film_squares);
     m_path_megakernel.launch(m_context, m_params.pixel_count, 0, "paths (megakernel)");
 }
@@ -174,8 +175,8 @@ void Renderer::run_path_batch()
     bool sync_counts = !m_context.device().is_gpu;
     if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) sync_counts = env[0] != '0';
     std::uint32_t live = n;
-    m_shadow.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
-                      m_scene.texels, m_shadow_rays, m_paths, m_counters);
+    m_shadow.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs, m_scene.materials,
+                      m_scene.textures, m_scene.texels, m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;
     for (std::uint32_t depth = 0; depth < m_params.max_depth && live > 0; ++depth) {
         const cl::Buffer<std::uint32_t>& queue_in = a_is_input ? m_queue_a : m_queue_b;
@@ -185,8 +186,8 @@ void Renderer::run_path_batch()
         zero_counters(m_context, m_counters, counter_out, 1);
         zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
 
-        m_extend.set_args(m_params, m_scene.nodes, m_scene.triangles, m_scene.attribs, m_scene.materials, m_scene.textures,
-                          m_scene.texels, m_rays, m_hits, queue_in, m_counters, counter_in);
+        m_extend.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs,
+                          m_scene.materials, m_scene.textures, m_scene.texels, m_rays, m_hits, queue_in, m_counters, counter_in);
         m_extend.launch(m_context, live, 0, "closest-hit rays");
         m_shade.set_args(m_params, m_scene.attribs, m_scene.materials, m_scene.textures, m_scene.texels,
                          m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,

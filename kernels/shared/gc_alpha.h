@@ -37,7 +37,7 @@
 
 #ifndef GC_BVH_PARAMS
 #define GC_BVH_PARAMS                                                                             \
-    GC_GLOBAL const GcBvhNode *gc_bvh_nodes, GC_GLOBAL const GcTriangle *gc_bvh_tris, GC_ALPHA_PARAMS
+    GC_GLOBAL const GcTraversalNode *gc_bvh_nodes, GC_GLOBAL const GcTraversalTriangle *gc_bvh_tris, GC_ALPHA_PARAMS
 #define GC_BVH_ARGS gc_bvh_nodes, gc_bvh_tris, GC_ALPHA_ARGS
 #define GC_BVH_NODE(i) gc_bvh_nodes[i]
 #define GC_BVH_TRI(i) gc_bvh_tris[i]

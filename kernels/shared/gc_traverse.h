@@ -3,7 +3,10 @@
  * of gc_types.h: GcBvhNode[] (inner node: children nodes[first], nodes[first + 1]; leaf:
  * tris[first .. first + count); count == 0 marks an inner node) and GcTriangle[] in leaf
  * order (v0.w holds the scene triangle index). The same body runs in the OpenCL kernels, in
- * the host reference (host/bvh/traverse_host.cpp) and, later, in GLSL.
+ * the host reference (host/bvh/traverse_host.cpp) and in GLSL (kernels/vk). Programs built
+ * with -D GC_BVH_WIDE (CPUs) get the BVH4 body of gc_traverse4.h instead, with the same
+ * results; the buffer types are then GcBvh4Node and GcTriangle4 (GcTraversalNode and
+ * GcTraversalTriangle in gc_types.h name whichever layout is compiled).
  *
  * Buffers come in through four macros, so the body does not care whether they are pointers
  * or shader-storage globals. Defaults (OpenCL C and C++):
@@ -56,7 +59,7 @@
 #include "gc_intersect.h"
 
 #ifndef GC_BVH_PARAMS
-#define GC_BVH_PARAMS GC_GLOBAL const GcBvhNode *gc_bvh_nodes, GC_GLOBAL const GcTriangle *gc_bvh_tris
+#define GC_BVH_PARAMS GC_GLOBAL const GcTraversalNode *gc_bvh_nodes, GC_GLOBAL const GcTraversalTriangle *gc_bvh_tris
 #define GC_BVH_ARGS gc_bvh_nodes, gc_bvh_tris
 #define GC_BVH_NODE(i) gc_bvh_nodes[i]
 #define GC_BVH_TRI(i) gc_bvh_tris[i]
@@ -67,6 +70,11 @@
 /* Deepest tree the builder may emit (root at depth 0); ordered traversal defers at most one
  * node per level below the root, so depth <= stack size is enough. */
 #define GC_BVH_MAX_DEPTH 64u
+
+#if defined(GC_BVH_WIDE)
+/* CPUs: the BVH4 layout's gc_trace_impl. */
+#include "gc_traverse4.h"
+#else
 
 GC_NAMESPACE_BEGIN
 
@@ -149,6 +157,11 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
     }
     return best;
 }
+
+GC_NAMESPACE_END
+#endif /* GC_BVH_WIDE */
+
+GC_NAMESPACE_BEGIN
 
 /* Closest hit in [t_min, t_max]; ties in t go to the smaller scene triangle index. */
 GC_FUNC GcHit gc_trace_closest(GC_BVH_PARAMS, GcRay ray)

@@ -39,6 +39,50 @@ GC_STRUCT(GcBvhNode) {
     float4 hi; /* xyz: bounds max; w: bits of `count` */
 } GC_STRUCT_END(GcBvhNode)
 
+/* BVH4 node, 128 bytes, the layout traversal reads on CPUs (GC_BVH_WIDE, see
+ * gc_traverse4.h): the bounds of four children in SoA form, so one ray tests all four boxes
+ * with 4-wide SIMD instructions inside one work-item (PoCL cannot vectorise the divergent
+ * traversal loop across work-items). Slot k's box is (lo_x.k, lo_y.k, lo_z.k) ..
+ * (hi_x.k, hi_y.k, hi_z.k); child.k is a child reference:
+ *   GC_INVALID                       empty slot (its bounds are empty: +inf .. -inf);
+ *   bit 31 clear                     index of an inner GcBvh4Node;
+ *   bit 31 set                       leaf: GcTriangle4 blocks [first, first + count), with
+ *                                    first = bits 0..26 and count - 1 = bits 27..30.
+ * Node 0 is the root; slots are filled from the first. */
+GC_STRUCT(GcBvh4Node) {
+    float4 lo_x;
+    float4 hi_x;
+    float4 lo_y;
+    float4 hi_y;
+    float4 lo_z;
+    float4 hi_z;
+    uint4 child;
+    uint4 pad; /* 0; keeps the node two 64-byte cache lines */
+} GC_STRUCT_END(GcBvh4Node)
+
+#define GC_BVH4_LEAF 0x80000000u
+#define GC_BVH4_LEAF_COUNT_SHIFT 27u
+#define GC_BVH4_LEAF_FIRST_MASK 0x07ffffffu
+#define GC_BVH4_LEAF_MAX_BLOCKS 16u
+
+/* Four triangles of a BVH4 leaf in SoA form, tested together by one ray. Lane k is the
+ * triangle (v0x.k, v0y.k, v0z.k), (v1...), (v2...); prim.k is its scene triangle index and
+ * flags.k its GC_TRI_* flags. Unused lanes have all vertices at the origin (zero area, never
+ * hit) and prim GC_INVALID. */
+GC_STRUCT(GcTriangle4) {
+    float4 v0x;
+    float4 v0y;
+    float4 v0z;
+    float4 v1x;
+    float4 v1y;
+    float4 v1z;
+    float4 v2x;
+    float4 v2y;
+    float4 v2z;
+    uint4 prim;
+    uint4 flags;
+} GC_STRUCT_END(GcTriangle4)
+
 /* Triangle in BVH leaf order, as the traversal kernels read it. */
 GC_STRUCT(GcTriangle) {
     float4 v0; /* xyz: vertex 0; w: bits of the scene triangle index */
@@ -213,6 +257,17 @@ GC_STRUCT(GcShadowRay) {
 #define GC_COUNTER_SHADOW 2u
 #define GC_COUNTER_COUNT 4u
 
+/* The BVH layout the traversal kernels read: BVH2 (GcBvhNode + GcTriangle) unless the host
+ * builds the program with -D GC_BVH_WIDE, then BVH4 (GcBvh4Node + GcTriangle4). Kernels
+ * declare their BVH buffers with these names, so one source serves both layouts. */
+#if defined(GC_BVH_WIDE)
+#define GcTraversalNode GcBvh4Node
+#define GcTraversalTriangle GcTriangle4
+#else
+#define GcTraversalNode GcBvhNode
+#define GcTraversalTriangle GcTriangle
+#endif
+
 GC_NAMESPACE_END
 
 #if defined(GC_HOST)
@@ -227,6 +282,8 @@ GC_CHECK_POD(GcRay);
 GC_CHECK_POD(GcHit);
 GC_CHECK_POD(GcBvhNode);
 GC_CHECK_POD(GcTriangle);
+GC_CHECK_POD(GcBvh4Node);
+GC_CHECK_POD(GcTriangle4);
 GC_CHECK_POD(GcTriangleAttribs);
 GC_CHECK_POD(GcMaterial);
 GC_CHECK_POD(GcTexture);
@@ -241,6 +298,8 @@ static_assert(sizeof(GcRay) == 32 && offsetof(GcRay, dir_tmax) == 16);
 static_assert(sizeof(GcHit) == 16 && offsetof(GcHit, prim) == 12);
 static_assert(sizeof(GcBvhNode) == 32 && offsetof(GcBvhNode, hi) == 16);
 static_assert(sizeof(GcTriangle) == 48 && offsetof(GcTriangle, v2) == 32);
+static_assert(sizeof(GcBvh4Node) == 128 && offsetof(GcBvh4Node, child) == 96);
+static_assert(sizeof(GcTriangle4) == 176 && offsetof(GcTriangle4, prim) == 144);
 static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng) == 48 &&
               offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&
               offsetof(GcTriangleAttribs, flags) == 92 && offsetof(GcTriangleAttribs, tangent) == 96);

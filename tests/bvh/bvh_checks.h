@@ -123,20 +123,31 @@ struct TraceComparison {
     std::size_t prim_mismatches = 0;
     std::size_t t_mismatches = 0;   // relative difference above 1e-5
     std::size_t any_mismatches = 0; // any-hit disagrees with closest-hit
+    std::size_t wide_mismatches = 0; // the BVH4 layout's closest or any hit differs from the BVH2's
     double max_rel_t_diff = 0.0;
 };
 
+inline bool same_bits(const dev::GcHit& a, const dev::GcHit& b)
+{
+    return a.prim == b.prim && std::bit_cast<std::uint32_t>(a.t) == std::bit_cast<std::uint32_t>(b.t) &&
+           std::bit_cast<std::uint32_t>(a.u) == std::bit_cast<std::uint32_t>(b.u) &&
+           std::bit_cast<std::uint32_t>(a.v) == std::bit_cast<std::uint32_t>(b.v);
+}
+
 // BVH closest/any hit against brute force for each ray. Same prim id, t within 1e-5
 // relative (in fact they run the same triangle test, so t is expected to be identical), any
-// hit == (closest hit found).
+// hit == (closest hit found). The BVH4 layout CPUs read (widen(bvh), gc_traverse4.h) must
+// give the BVH2's hits bit for bit.
 inline TraceComparison compare_with_brute_force(const FlatBvh& bvh, const Scene& scene, const std::vector<Ray>& rays)
 {
     TraceComparison c;
+    const WideBvh wide = widen(bvh);
     for (const Ray& ray : rays) {
         ++c.rays;
         const dev::GcHit bvh_hit = trace_closest(bvh, ray);
         const dev::GcHit ref = trace_brute_force(scene, ray);
         const bool any = trace_any(bvh, ray);
+        if (!same_bits(trace_closest(wide, ray), bvh_hit) || trace_any(wide, ray) != any) ++c.wide_mismatches;
         if (ref.prim != GC_INVALID) ++c.hits;
         if (bvh_hit.prim != ref.prim) {
             if (++c.prim_mismatches <= 5)
@@ -157,8 +168,10 @@ inline TraceComparison compare_with_brute_force(const FlatBvh& bvh, const Scene&
 inline void expect_agreement(const TraceComparison& c, const char* scene_name)
 {
     std::printf("[ %s ] %zu rays, %zu hits, prim mismatches %zu, t/uv mismatches %zu (max rel t diff %.3g), "
-                "any-hit mismatches %zu\n",
-                scene_name, c.rays, c.hits, c.prim_mismatches, c.t_mismatches, c.max_rel_t_diff, c.any_mismatches);
+                "any-hit mismatches %zu, BVH4 vs BVH2 mismatches %zu\n",
+                scene_name, c.rays, c.hits, c.prim_mismatches, c.t_mismatches, c.max_rel_t_diff, c.any_mismatches,
+                c.wide_mismatches);
+    EXPECT_EQ(c.wide_mismatches, 0u) << scene_name;
     EXPECT_EQ(c.prim_mismatches, 0u) << scene_name;
     EXPECT_EQ(c.t_mismatches, 0u) << scene_name;
     EXPECT_EQ(c.any_mismatches, 0u) << scene_name;

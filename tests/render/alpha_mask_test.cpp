@@ -17,6 +17,7 @@
 #include "host/cl/kernel.h"
 #include "host/cl/program.h"
 #include "host/math/to_device.h"
+#include "host/render/device_bvh.h"
 #include "host/render/scene_convert.h"
 #include "tests/cl/cl_test_util.h"
 #include "tests/validation/validation_util.h"
@@ -107,11 +108,17 @@ TEST(AlphaMask, HostReferenceSkipsCutOut)
 {
     const Scene scene = half_cut_quad();
     const FlatBvh bvh = build_bvh(scene);
+    const WideBvh wide = widen(bvh);
     const DeviceAlpha alpha = device_alpha(scene);
     std::size_t through = 0, blocked = 0;
     for (const Ray& r : grid_rays(GC_FLOAT_MAX)) {
         const dev::GcHit bvh_hit = trace_closest(bvh, r, alpha.view());
         const dev::GcHit brute = trace_brute_force(scene, r, alpha.view());
+        const dev::GcHit wide_hit = trace_closest(wide, r, alpha.view());
+        ASSERT_EQ(wide_hit.prim, bvh_hit.prim);
+        ASSERT_EQ(wide_hit.t, bvh_hit.t);
+        ASSERT_EQ(wide_hit.u, bvh_hit.u);
+        ASSERT_EQ(wide_hit.v, bvh_hit.v);
         ASSERT_EQ(bvh_hit.prim, brute.prim);
         ASSERT_EQ(bvh_hit.t, brute.t);
         ASSERT_EQ(bvh_hit.u, brute.u);
@@ -128,8 +135,11 @@ TEST(AlphaMask, HostReferenceSkipsCutOut)
         // Without the hook (trace.cl's traversal) the whole quad is opaque.
         EXPECT_LT(trace_closest(bvh, r).prim, 2u);
     }
-    for (const Ray& r : grid_rays(1.5f)) EXPECT_EQ(trace_any(bvh, r, alpha.view()), !through_cut_out(r)) << r.origin.x;
-    std::printf("[alpha] host: %zu rays through the cut-out, %zu on the opaque half; BVH == brute force\n", through,
+    for (const Ray& r : grid_rays(1.5f)) {
+        EXPECT_EQ(trace_any(bvh, r, alpha.view()), !through_cut_out(r)) << r.origin.x;
+        EXPECT_EQ(trace_any(wide, r, alpha.view()), !through_cut_out(r)) << "BVH4, x = " << r.origin.x;
+    }
+    std::printf("[alpha] host: %zu rays through the cut-out, %zu on the opaque half; BVH2 == BVH4 == brute force\n", through,
                 blocked);
     EXPECT_GT(through, 50u);
     EXPECT_GT(blocked, 50u);
@@ -137,8 +147,9 @@ TEST(AlphaMask, HostReferenceSkipsCutOut)
 
 class AlphaMaskDevice : public cl::test::DeviceTest {};
 
-// extend.cl (closest hit) and shadow.cl (any hit) themselves, against the host reference.
-TEST_F(AlphaMaskDevice, ExtendAndShadowKernelsSkipCutOut)
+// extend.cl (closest hit) and shadow.cl (any hit) themselves, against the host reference,
+// over both BVH layouts.
+void expect_kernels_skip_cut_out(const cl::Context& ctx, BvhLayout layout)
 {
     const Scene scene = half_cut_quad();
     const FlatBvh bvh = build_bvh(scene);
@@ -167,15 +178,15 @@ TEST_F(AlphaMaskDevice, ExtendAndShadowKernelsSkipCutOut)
     counters[GC_COUNTER_SHADOW] = n;
     std::vector<dev::GcPathState> paths(n, dev::GcPathState{});
 
-    const cl::Context& ctx = *context;
     auto make = [&](const auto& data, const char* name) {
         using T = typename std::decay_t<decltype(data)>::value_type;
         auto buf = cl::Buffer<T>::create(ctx, data.size(), CL_MEM_READ_WRITE, name);
         buf.write(std::span<const T>(data));
         return buf;
     };
-    auto nodes = make(bvh.nodes, "nodes");
-    auto tris = make(bvh.triangles, "triangles");
+    const DeviceBvh device_bvh = DeviceBvh::upload(ctx, bvh, layout);
+    const cl_mem nodes = device_bvh.nodes();
+    const cl_mem tris = device_bvh.triangles();
     auto attribs = make(alpha.attribs, "attribs");
     auto materials = make(alpha.materials, "materials");
     auto textures = make(alpha.textures.textures, "textures");
@@ -187,12 +198,12 @@ TEST_F(AlphaMaskDevice, ExtendAndShadowKernelsSkipCutOut)
     auto path_buf = make(paths, "paths");
     auto hit_buf = cl::Buffer<dev::GcHit>::create(ctx, n, CL_MEM_READ_WRITE, "hits");
 
-    const cl::Program extend_program(ctx, "extend.cl");
+    const cl::Program extend_program(ctx, "extend.cl", program_options(layout));
     cl::Kernel extend = extend_program.kernel("extend");
     extend.set_args(params, nodes, tris, attribs, materials, textures, texels, ray_buf, hit_buf, queue_buf, counter_buf,
                     GC_COUNTER_RAYS_A);
     extend.launch(ctx, n);
-    const cl::Program shadow_program(ctx, "shadow.cl");
+    const cl::Program shadow_program(ctx, "shadow.cl", program_options(layout));
     cl::Kernel shadow = shadow_program.kernel("shadow");
     shadow.set_args(params, nodes, tris, attribs, materials, textures, texels, shadow_buf, path_buf, counter_buf);
     shadow.launch(ctx, n);
@@ -215,10 +226,15 @@ TEST_F(AlphaMaskDevice, ExtendAndShadowKernelsSkipCutOut)
             EXPECT_GE(hits[i].prim, 2u);
         }
     }
-    std::printf("[alpha] %s: %u rays (%zu through the cut-out), closest-hit mismatches %zu, any-hit mismatches %zu\n",
-                ctx.device().device_name.c_str(), n, through, closest_mismatches, any_mismatches);
-    EXPECT_EQ(closest_mismatches, 0u);
-    EXPECT_EQ(any_mismatches, 0u);
+    std::printf("[alpha] %s, %s: %u rays (%zu through the cut-out), closest-hit mismatches %zu, any-hit mismatches %zu\n",
+                ctx.device().device_name.c_str(), layout_name(layout), n, through, closest_mismatches, any_mismatches);
+    EXPECT_EQ(closest_mismatches, 0u) << layout_name(layout);
+    EXPECT_EQ(any_mismatches, 0u) << layout_name(layout);
+}
+
+TEST_F(AlphaMaskDevice, ExtendAndShadowKernelsSkipCutOut)
+{
+    for (const BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide}) expect_kernels_skip_cut_out(*context, layout);
 }
 
 // Floor (y = 0, Lambert 0.5) lit by a small downward-facing emitter at y = 1; a MASK quad at

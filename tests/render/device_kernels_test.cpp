@@ -17,6 +17,7 @@
 #include "host/cl/device.h"
 #include "host/cl/program.h"
 #include "host/math/to_device.h"
+#include "host/render/device_bvh.h"
 #include "host/scene/load.h"
 
 namespace gc {
@@ -53,30 +54,29 @@ struct TraversalFigures {
     float max_rel_t = 0.0f;
 };
 
-TraversalFigures compare_traversal(const cl::DeviceInfo& device, const Scene& scene, const std::vector<Ray>& rays,
-                                   const std::vector<dev::GcHit>& brute_force)
+// trace.cl over the BVH in `layout` (both layouts on every device: the choice per device is
+// about speed, the hits must not depend on it).
+TraversalFigures compare_traversal(const cl::DeviceInfo& device, BvhLayout layout, const Scene& scene,
+                                   const std::vector<Ray>& rays, const std::vector<dev::GcHit>& brute_force)
 {
     const FlatBvh bvh = build_bvh(scene);
     const cl::Context context(device);
-    const cl::Program program(context, "trace.cl");
+    const DeviceBvh device_bvh = DeviceBvh::upload(context, bvh, layout);
+    const cl::Program program(context, "trace.cl", program_options(layout));
     std::vector<dev::GcRay> device_rays;
     for (const Ray& r : rays) device_rays.push_back(to_device(r));
     const auto count = static_cast<std::uint32_t>(rays.size());
 
-    auto nodes = cl::Buffer<dev::GcBvhNode>::create(context, bvh.nodes.size(), CL_MEM_READ_ONLY, "nodes");
-    auto tris = cl::Buffer<dev::GcTriangle>::create(context, bvh.triangles.size(), CL_MEM_READ_ONLY, "triangles");
     auto ray_buf = cl::Buffer<dev::GcRay>::create(context, count, CL_MEM_READ_ONLY, "rays");
     auto hit_buf = cl::Buffer<dev::GcHit>::create(context, count, CL_MEM_WRITE_ONLY, "hits");
     auto occ_buf = cl::Buffer<std::uint32_t>::create(context, count, CL_MEM_WRITE_ONLY, "occluded");
-    nodes.write(bvh.nodes);
-    tris.write(bvh.triangles);
     ray_buf.write(device_rays);
 
     cl::Kernel closest = program.kernel("trace_closest");
-    closest.set_args(nodes, tris, ray_buf, hit_buf, count);
+    closest.set_args(device_bvh.nodes(), device_bvh.triangles(), ray_buf, hit_buf, count);
     closest.launch(context, count);
     cl::Kernel any = program.kernel("trace_any");
-    any.set_args(nodes, tris, ray_buf, occ_buf, count);
+    any.set_args(device_bvh.nodes(), device_bvh.triangles(), ray_buf, occ_buf, count);
     any.launch(context, count);
     context.finish();
     std::vector<dev::GcHit> hits(count);
@@ -111,15 +111,17 @@ void expect_traversal_matches(const Scene& scene, const std::string& name, std::
     std::vector<dev::GcHit> brute_force;
     for (const Ray& r : rays) brute_force.push_back(trace_brute_force(scene, r));
     for (const cl::DeviceInfo& device : devices) {
-        const TraversalFigures f = compare_traversal(device, scene, rays, brute_force);
-        std::printf("[traversal] %s on %s: %zu rays, %zu hits, prim mismatches %zu, t mismatches %zu "
-                    "(max rel t error %.3g), any-hit mismatches %zu\n",
-                    name.c_str(), device.device_name.c_str(), rays.size(), f.hits, f.prim_mismatches,
-                    f.t_mismatches, static_cast<double>(f.max_rel_t), f.any_mismatches);
-        EXPECT_GT(f.hits, ray_count / 5) << "too few hits to mean anything";
-        EXPECT_EQ(f.prim_mismatches, 0u) << device.device_name;
-        EXPECT_EQ(f.t_mismatches, 0u) << device.device_name;
-        EXPECT_EQ(f.any_mismatches, 0u) << device.device_name;
+        for (const BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide}) {
+            const TraversalFigures f = compare_traversal(device, layout, scene, rays, brute_force);
+            std::printf("[traversal] %s on %s, %s: %zu rays, %zu hits, prim mismatches %zu, t mismatches %zu "
+                        "(max rel t error %.3g), any-hit mismatches %zu\n",
+                        name.c_str(), device.device_name.c_str(), layout_name(layout), rays.size(), f.hits,
+                        f.prim_mismatches, f.t_mismatches, static_cast<double>(f.max_rel_t), f.any_mismatches);
+            EXPECT_GT(f.hits, ray_count / 5) << "too few hits to mean anything";
+            EXPECT_EQ(f.prim_mismatches, 0u) << device.device_name << " " << layout_name(layout);
+            EXPECT_EQ(f.t_mismatches, 0u) << device.device_name << " " << layout_name(layout);
+            EXPECT_EQ(f.any_mismatches, 0u) << device.device_name << " " << layout_name(layout);
+        }
     }
 }
 

@@ -114,24 +114,36 @@ TEST(Cli, UnsupportedOutputFormatLeavesExistingFileAlone)
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"image.xyz"});
 }
 
-// A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the
-// write fails after the render, and the previous image must survive byte for byte.
-TEST(Cli, BadPathKernelVariableIsAUsageError)
+// An environment variable with a value the renderer does not know is a usage error (exit 2)
+// that names the variable and the value, before anything is written.
+void expect_env_usage_error(const char* name, const char* value, const std::string& message)
 {
     if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
     const TempDir dir;
     RunOptions options = cli_options();
-    options.env["GEOCOLD_PATH_KERNEL"] = "mega";
+    options.env[name] = value;
     const RunResult r = run_process(
         cli_path(), {k_cornell.string(), "--spp", "1", "--res", "8x8", "--device", "cpu", "-o", (dir / "out.ppm").string()},
         options);
-    show("GEOCOLD_PATH_KERNEL=mega", r);
+    show((std::string(name) + "=" + value).c_str(), r);
     EXPECT_EQ(r.signal, 0) << r.describe();
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("GEOCOLD_PATH_KERNEL must be 'wavefront' or 'megakernel', not 'mega'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
     EXPECT_TRUE(dir.entries().empty()) << "an image was written";
 }
 
+TEST(Cli, BadPathKernelVariableIsAUsageError)
+{
+    expect_env_usage_error("GEOCOLD_PATH_KERNEL", "mega", "GEOCOLD_PATH_KERNEL must be 'wavefront' or 'megakernel', not 'mega'");
+}
+
+TEST(Cli, BadBvhWidthVariableIsAUsageError)
+{
+    expect_env_usage_error("GEOCOLD_BVH_WIDTH", "8", "GEOCOLD_BVH_WIDTH must be 2 or 4, not '8'");
+}
+
+// A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the
+// write fails after the render, and the previous image must survive byte for byte.
 TEST(Cli, FullDiskKeepsThePreviousImage)
 {
     if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";

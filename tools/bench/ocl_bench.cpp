@@ -15,23 +15,14 @@ double seconds_since(Clock::time_point start)
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-template <class T>
-cl::Buffer<T> upload_vector(const cl::Context& context, const std::vector<T>& data, const char* name)
-{
-    cl::Buffer<T> buffer = cl::Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, name);
-    buffer.write(data);
-    return buffer;
-}
-
 }  // namespace
 
 OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh)
     : m_context(context),
-      m_program(context, "trace.cl"),
+      m_bvh(DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()))),
+      m_program(context, "trace.cl", program_options(m_bvh.layout())),
       m_closest(m_program.kernel("trace_closest")),
-      m_any(m_program.kernel("trace_any")),
-      m_nodes(upload_vector(context, bvh.nodes, "bench bvh nodes")),
-      m_tris(upload_vector(context, bvh.triangles, "bench bvh triangles"))
+      m_any(m_program.kernel("trace_any"))
 {
 }
 
@@ -53,7 +44,7 @@ std::vector<double> OclTracer::closest(const std::vector<dev::GcRay>& rays, int 
     if (rays.empty()) return times;
     upload(rays);
     const auto count = static_cast<std::uint32_t>(rays.size());
-    m_closest.set_args(m_nodes, m_tris, m_rays, m_hits, count);
+    m_closest.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_hits, count);
     m_closest.launch(m_context, count, 0, "benchmark closest hits");
     m_context.finish();
     for (int r = 0; r < repeats; ++r) {
@@ -76,7 +67,7 @@ std::vector<double> OclTracer::occluded(const std::vector<dev::GcRay>& rays, int
     if (rays.empty()) return times;
     upload(rays);
     const auto count = static_cast<std::uint32_t>(rays.size());
-    m_any.set_args(m_nodes, m_tris, m_rays, m_flags, count);
+    m_any.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_flags, count);
     m_any.launch(m_context, count, 0, "benchmark any hits");
     m_context.finish();
     for (int r = 0; r < repeats; ++r) {

@@ -13,6 +13,7 @@
 #include "host/cl/context.h"
 #include "host/cl/kernel.h"
 #include "host/cl/program.h"
+#include "host/render/device_bvh.h"
 #include "host/render/render_settings.h"
 #include "host/scene/scene.h"
 
@@ -25,6 +26,7 @@ public:
     OclTracer(const cl::Context& context, const FlatBvh& bvh);
 
     double compile_seconds() const { return m_program.build_seconds(); }
+    const char* layout() const { return layout_name(m_bvh.layout()); }
     // Uploads the rays, runs one untimed launch, then `repeats` timed ones; returns every
     // timed duration. prims: the hit primitive (or the occlusion flag) of the last launch.
     std::vector<double> closest(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& prims);
@@ -34,11 +36,10 @@ private:
     void upload(const std::vector<dev::GcRay>& rays);
 
     const cl::Context& m_context;
+    DeviceBvh m_bvh;  // before m_program: its layout picks the traversal compiled
     cl::Program m_program;
     cl::Kernel m_closest;
     cl::Kernel m_any;
-    cl::Buffer<dev::GcBvhNode> m_nodes;
-    cl::Buffer<dev::GcTriangle> m_tris;
     cl::Buffer<dev::GcRay> m_rays;
     cl::Buffer<dev::GcHit> m_hits;
     cl::Buffer<std::uint32_t> m_flags;

@@ -1,0 +1,37 @@
+// The BVH4 layout CPUs traverse (GcBvh4Node + GcTriangle4, kernels/shared/gc_traverse4.h),
+// collapsed from the BVH2 that every other device reads. Both give the same hits: the
+// collapse only regroups boxes and triangles, and traversal results do not depend on the
+// tree (tie rule in gc_traverse.h).
+//
+//     FlatBvh bvh = build_bvh(scene);
+//     WideBvh wide = widen(bvh);   // upload wide.nodes and wide.blocks
+#pragma once
+
+#include <vector>
+
+#include "gc_types.h"
+#include "host/bvh/flatten.h"
+
+namespace gc {
+
+// Nodes in depth-first order (a node before its children, a child's subtree before its next
+// sibling's), node 0 the root; GcTriangle4 blocks in the order their leaves are met. The
+// empty scene gives a root with four empty slots over one dummy block (prim GC_INVALID in
+// every lane), so both buffers are non-empty and every ray misses.
+struct WideBvh {
+    std::vector<dev::GcBvh4Node> nodes;
+    std::vector<dev::GcTriangle4> blocks;
+};
+
+// Collapse rules (after Embree's BVH4 builders, and Wald et al. 2008, "Getting rid of
+// packets"): a BVH2 subtree with at most four triangles becomes one leaf of one block, tested
+// by one 4-wide triangle test instead of a box test per node; a larger BVH2 leaf becomes a
+// leaf of ceil(count / 4) blocks; an inner node takes its two children and repeatedly opens
+// the child with the largest surface area that is not such a leaf, until it has four. The
+// BVH4 is never deeper than the BVH2, so gc_traverse4.h's stack bound holds.
+WideBvh widen(const FlatBvh& bvh);
+
+// Bytes the layout occupies on a device.
+std::size_t wide_bvh_bytes(const WideBvh& bvh);
+
+}  // namespace gc

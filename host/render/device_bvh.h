@@ -1,0 +1,48 @@
+// The BVH as one device reads it: BVH2 (GcBvhNode + GcTriangle) on GPUs, BVH4 (GcBvh4Node +
+// GcTriangle4, host/bvh/widen.h) on CPUs, where one ray tests four boxes or four triangles
+// with SIMD instructions (kernels/shared/gc_traverse4.h). Both give the same hits, bit for
+// bit, so the choice is about speed only. Programs that trace rays must be built with
+// program_options(layout), which selects the matching traversal in the kernels.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "host/bvh/flatten.h"
+#include "host/cl/buffer.h"
+#include "host/cl/context.h"
+
+namespace gc {
+
+enum class BvhLayout { Binary, Wide };
+
+// BVH4 on CPUs, BVH2 on GPUs; GEOCOLD_BVH_WIDTH=2|4 overrides (A/B benchmarks, tests).
+// Throws UsageError for any other value.
+BvhLayout bvh_layout_for(const cl::DeviceInfo& device);
+
+// "-D GC_BVH_WIDE" for the BVH4, "" for the BVH2.
+std::string program_options(BvhLayout layout);
+
+const char* layout_name(BvhLayout layout);  // "BVH2" or "BVH4"
+
+class DeviceBvh {
+public:
+    DeviceBvh() = default;
+    // Uploads `bvh` in `layout` (collapsing it to a BVH4 first where asked).
+    static DeviceBvh upload(const cl::Context& context, const FlatBvh& bvh, BvhLayout layout);
+
+    BvhLayout layout() const { return m_layout; }
+    // The two buffers the traversal kernels take, in either layout.
+    cl_mem nodes() const;
+    cl_mem triangles() const;
+    std::uint64_t bytes() const;
+
+private:
+    BvhLayout m_layout = BvhLayout::Binary;
+    cl::Buffer<dev::GcBvhNode> m_nodes;
+    cl::Buffer<dev::GcTriangle> m_triangles;
+    cl::Buffer<dev::GcBvh4Node> m_wide_nodes;
+    cl::Buffer<dev::GcTriangle4> m_wide_blocks;
+};
+
+}  // namespace gc

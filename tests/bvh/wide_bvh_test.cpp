@@ -1,0 +1,158 @@
+// The BVH4 layout (host/bvh/widen.h): structure against the scene, and the same hits as the
+// BVH2 it is collapsed from for leaf sizes 1 to 16 (the traversal tests in traverse_test.cpp
+// compare it with the BVH2 on every ray through compare_with_brute_force).
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bvh_checks.h"
+#include "host/bvh/widen.h"
+#include "test_scenes.h"
+
+namespace gc::test {
+namespace {
+
+struct WideShape {
+    std::size_t leaves = 0;
+    std::size_t used_lanes = 0;
+    std::size_t depth = 0; // edges from the root to the deepest inner node
+    std::uint32_t max_blocks = 0; // most blocks in one leaf
+};
+
+bool slot_contains(const dev::GcBvh4Node& n, int k, float x, float y, float z)
+{
+    return n.lo_x[k] <= x && x <= n.hi_x[k] && n.lo_y[k] <= y && y <= n.hi_y[k] && n.lo_z[k] <= z && z <= n.hi_z[k];
+}
+
+// Walks the tree from the root and checks every rule widen() promises; reports through gtest.
+WideShape check_wide(const WideBvh& wide, const Scene& scene)
+{
+    WideShape shape;
+    std::vector<int> prim_seen(scene.triangle_count(), 0);
+    std::vector<int> node_seen(wide.nodes.size(), 0);
+    int failures = 0;
+    auto fail = [&](const std::string& what) {
+        if (++failures <= 10) ADD_FAILURE() << what;
+    };
+    std::function<void(std::uint32_t, std::size_t)> visit = [&](std::uint32_t index, std::size_t depth) {
+        ++node_seen[index];
+        shape.depth = std::max(shape.depth, depth);
+        const dev::GcBvh4Node& n = wide.nodes[index];
+        bool empty_seen = false;
+        for (int k = 0; k < 4; ++k) {
+            const std::uint32_t ref = n.child[k];
+            if (ref == GC_INVALID) {
+                empty_seen = true;
+                if (!(n.lo_x[k] > n.hi_x[k])) fail("empty slot with non-empty bounds in node " + std::to_string(index));
+                continue;
+            }
+            if (empty_seen) fail("node " + std::to_string(index) + " has a gap before slot " + std::to_string(k));
+            if ((ref & GC_BVH4_LEAF) == 0u) {
+                if (ref <= index || ref >= wide.nodes.size()) {
+                    fail("node " + std::to_string(index) + " child " + std::to_string(ref) + " out of order");
+                    continue;
+                }
+                const dev::GcBvh4Node& c = wide.nodes[ref];
+                for (int j = 0; j < 4; ++j) {
+                    if (c.child[j] == GC_INVALID) continue;
+                    if (!slot_contains(n, k, c.lo_x[j], c.lo_y[j], c.lo_z[j]) ||
+                        !slot_contains(n, k, c.hi_x[j], c.hi_y[j], c.hi_z[j]))
+                        fail("node " + std::to_string(ref) + " is not inside its parent's slot");
+                }
+                visit(ref, depth + 1);
+                continue;
+            }
+            ++shape.leaves;
+            const std::uint32_t first = ref & GC_BVH4_LEAF_FIRST_MASK;
+            const std::uint32_t count = ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
+            shape.max_blocks = std::max(shape.max_blocks, count);
+            if (first + count > wide.blocks.size()) {
+                fail("leaf blocks out of range");
+                continue;
+            }
+            for (std::uint32_t b = first; b < first + count; ++b) {
+                const dev::GcTriangle4& q = wide.blocks[b];
+                for (int lane = 0; lane < 4; ++lane) {
+                    const std::uint32_t prim = q.prim[lane];
+                    if (prim == GC_INVALID) {
+                        if (q.v0x[lane] != 0.0f || q.v1y[lane] != 0.0f || q.v2z[lane] != 0.0f)
+                            fail("unused lane with vertices");
+                        continue;
+                    }
+                    if (prim >= prim_seen.size()) {
+                        fail("lane with scene index " + std::to_string(prim));
+                        continue;
+                    }
+                    ++prim_seen[prim];
+                    ++shape.used_lanes;
+                    const float xs[3] = {q.v0x[lane], q.v1x[lane], q.v2x[lane]};
+                    const float ys[3] = {q.v0y[lane], q.v1y[lane], q.v2y[lane]};
+                    const float zs[3] = {q.v0z[lane], q.v1z[lane], q.v2z[lane]};
+                    for (int c = 0; c < 3; ++c) {
+                        const Point3 p = scene.vertex(prim, c);
+                        if (xs[c] != p.x || ys[c] != p.y || zs[c] != p.z) fail("lane vertex differs from the scene");
+                        if (!slot_contains(n, k, xs[c], ys[c], zs[c])) fail("triangle outside its leaf's slot");
+                    }
+                }
+            }
+        }
+    };
+    visit(0, 0);
+    for (std::size_t p = 0; p < prim_seen.size(); ++p)
+        if (prim_seen[p] != 1) fail("scene triangle " + std::to_string(p) + " appears " + std::to_string(prim_seen[p]) + "x");
+    for (std::size_t i = 0; i < node_seen.size(); ++i)
+        if (node_seen[i] != 1) fail("node " + std::to_string(i) + " reached " + std::to_string(node_seen[i]) + "x");
+    EXPECT_EQ(failures, 0);
+    return shape;
+}
+
+TEST(WideBvh, CoversEveryTriangleOnceForEveryLeafSize)
+{
+    const Scene scene = random_soup(10000, 21);
+    for (int leaf : {1, 2, 4, 8, 16}) {
+        // Expensive node visits make the builder use the long leaves, so multi-block leaves occur.
+        const FlatBvh bvh = build_bvh(scene, {.max_leaf_size = leaf, .traversal_cost = leaf > 4 ? 8.0f : 1.0f});
+        const WideBvh wide = widen(bvh);
+        const WideShape shape = check_wide(wide, scene);
+        const BvhStats s = bvh_stats(bvh);
+        std::printf("[ wide, leaf %2d ] BVH2 %zu nodes depth %zu -> BVH4 %zu nodes depth %zu, %zu leaves, "
+                    "%zu blocks (%.0f%% of lanes used, up to %u per leaf), %.1f bytes per triangle\n",
+                    leaf, s.nodes, s.max_depth, wide.nodes.size(), shape.depth, shape.leaves, wide.blocks.size(),
+                    100.0 * double(shape.used_lanes) / double(4 * wide.blocks.size()), shape.max_blocks,
+                    double(wide_bvh_bytes(wide)) / double(scene.triangle_count()));
+        EXPECT_EQ(shape.used_lanes, scene.triangle_count());
+        EXPECT_LE(shape.depth, s.max_depth) << "the BVH4 must not be deeper than its BVH2 (stack bound)";
+        EXPECT_LT(wide.nodes.size(), s.nodes / 2) << "collapsing should remove most inner nodes";
+        if (leaf == 16) {
+            EXPECT_GT(shape.max_blocks, 2u) << "the long leaves must be exercised";
+        }
+        expect_agreement(compare_with_brute_force(bvh, scene, mixed_rays(scene, 3000, 22)), "wide vs brute force");
+    }
+}
+
+TEST(WideBvh, EmptyAndTinyScenes)
+{
+    const Scene none = empty_scene();
+    const WideBvh empty = widen(build_bvh(none));
+    ASSERT_EQ(empty.nodes.size(), 1u);
+    ASSERT_EQ(empty.blocks.size(), 1u);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(empty.nodes[0].child[k], GC_INVALID);
+    for (const Ray& r : mixed_rays(none, 200, 23)) {
+        EXPECT_EQ(trace_closest(empty, r).prim, GC_INVALID);
+        EXPECT_FALSE(trace_any(empty, r));
+    }
+    // One triangle: the root is a BVH2 leaf, so the BVH4 root holds one leaf slot.
+    Scene one = empty_scene();
+    add_triangle(one, {0, 0, 2}, {1, 0, 2}, {0, 1, 2});
+    const WideBvh wide = widen(build_bvh(one));
+    check_wide(wide, one);
+    const dev::GcHit h = trace_closest(wide, {Point3(0.25f, 0.5f, 0), Vec3(0, 0, 1)});
+    EXPECT_EQ(h.prim, 0u);
+    EXPECT_EQ(h.t, 2.0f);
+}
+
+}  // namespace
+}  // namespace gc::test
