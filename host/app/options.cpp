@@ -260,6 +260,10 @@ Environment:
                            megakernel on CPUs, wavefront on GPUs; same image either way)
   GEOCOLD_BVH_WIDTH        2|4: the BVH layout traversed (default: 4 on CPUs, where one
                            ray tests 4 boxes at once, 2 on GPUs; same image either way)
+  GEOCOLD_IMAGE_MODULE     the OpenImageIO module, loaded only for formats that are not
+                           built in (.exr, .hdr, .tif, reading .png; .pfm/.ppm and writing
+                           .png need none). Default: geocold-image-oiio.so beside
+                           geocold-cl, else ../lib/geocold-cl/geocold-image-oiio.so
 
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file

@@ -3,19 +3,20 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <system_error>
+#include <utility>
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include "host/image/atomic_file.h"
+#include "host/image/png_writer.h"
 #include "host/image/pnm_io.h"
 #include "host/util/error.h"
 #ifdef GC_HAVE_OIIO
-#include "host/image/oiio_io.h"
+#include "host/image/image_module.h"
 #endif
 
 namespace gc {
@@ -28,16 +29,34 @@ std::string lower_extension(const std::filesystem::path& path)
     return ext;
 }
 
-bool is_builtin(const std::string& ext) { return ext == ".pfm" || ext == ".ppm"; }
+// The formats read and written without the image module. PNG, the default output, is written
+// built in (png_writer.h) but read through the module.
+bool reads_builtin(const std::string& ext) { return ext == ".pfm" || ext == ".ppm"; }
+bool writes_builtin(const std::string& ext) { return reads_builtin(ext) || ext == ".png"; }
 
-// Empty when `path`'s extension can be written by this build, else why not.
+const char* k_no_extension = "the file name has no extension to choose the format by (use .exr, .png, .pfm or .ppm)";
+
+#ifdef GC_HAVE_OIIO
+// The module's codec; else throws `Failure` with the message `prefix` + why it cannot be loaded.
+template <class Failure>
+const ImageCodec& codec_or_throw(const std::string& prefix)
+{
+    std::string why;
+    const ImageCodec* codec = image_module(&why);
+    if (!codec) throw Failure(prefix + why);
+    return *codec;
+}
+#endif
+
+// Empty when `path`'s extension can be written by this build, else why not. Throws
+// OutputError when that takes the image module and it cannot be loaded.
 std::string format_problem(const std::filesystem::path& path)
 {
     const std::string ext = lower_extension(path);
-    if (ext.empty()) return "the file name has no extension to choose the format by (use .exr, .png, .pfm or .ppm)";
-    if (is_builtin(ext)) return {};
+    if (ext.empty()) return k_no_extension;
+    if (writes_builtin(ext)) return {};
 #ifdef GC_HAVE_OIIO
-    return detail::oiio_cannot_write(path);
+    return codec_or_throw<OutputError>(detail::cannot_write(path)).cannot_write(path);
 #else
     return "writing '" + ext + "' needs OpenImageIO, which this build does not include (configured with "
            "GEOCOLD_WITH_OIIO=OFF); use .pfm or .ppm";
@@ -68,28 +87,34 @@ bool image_io_has_oiio()
 #endif
 }
 
-float srgb_encode(float linear)
+void start_image_io_for(const std::filesystem::path& path, ImageAccess access)
 {
-    return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-float srgb_decode(float encoded)
-{
-    return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
-}
-
-uint8_t linear_to_srgb8(float linear)
-{
-    // NaN fails both comparisons: map it to black rather than to an arbitrary byte.
-    const float c = linear > 0.0f ? std::fmin(linear, 1.0f) : 0.0f;
-    return uint8_t(std::lround(srgb_encode(c) * 255.0f));
+#ifdef GC_HAVE_OIIO
+    const std::string ext = lower_extension(path);
+    const bool builtin = access == ImageAccess::Read ? reads_builtin(ext) : writes_builtin(ext);
+    if (!ext.empty() && !builtin) start_loading_image_module();
+#else
+    (void)path;
+    (void)access;
+#endif
 }
 
 void check_output_path(const std::filesystem::path& path)
 {
+    check_output_location(path);
+    check_output_format(path);
+}
+
+void check_output_format(const std::filesystem::path& path)
+{
+    if (const std::string why = format_problem(path); !why.empty()) throw OutputError(detail::cannot_write(path) + why);
+}
+
+void check_output_location(const std::filesystem::path& path)
+{
     const std::string prefix = detail::cannot_write(path);
     if (path.empty()) throw OutputError("cannot write image: the output path is empty");
-    if (const std::string why = format_problem(path); !why.empty()) throw OutputError(prefix + why);
+    if (lower_extension(path).empty()) throw OutputError(prefix + k_no_extension);
 
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw OutputError(prefix + "it is a directory");
@@ -115,7 +140,7 @@ void write_image(const std::filesystem::path& path, const Film& film, const Imag
 {
     if (film.empty()) throw OutputError(detail::cannot_write(path) + "the image is empty (0 pixels)");
     const std::string ext = lower_extension(path);
-    if (!is_builtin(ext)) {
+    if (!writes_builtin(ext)) {
         if (const std::string why = format_problem(path); !why.empty())
             throw OutputError(detail::cannot_write(path) + why);
     }
@@ -124,13 +149,16 @@ void write_image(const std::filesystem::path& path, const Film& film, const Imag
             detail::write_bytes(tmp, detail::encode_pfm(film), path);
         } else if (ext == ".ppm") {
             detail::write_bytes(tmp, detail::encode_ppm(film), path);
+        } else if (ext == ".png") {
+            detail::write_bytes(tmp, detail::encode_png(film, meta, path.string()), path);
         } else {
 #ifdef GC_HAVE_OIIO
-            detail::oiio_write(tmp, path, film, meta);
+            const ImageCodec& codec = codec_or_throw<OutputError>(detail::cannot_write(path));
+            if (const std::string why = codec.write(tmp, path, film, meta); !why.empty())
+                throw OutputError(detail::cannot_write(path) + why);
 #endif
         }
     });
-    (void)meta;  // only the OIIO formats carry metadata
 }
 
 Film read_image(const std::filesystem::path& path)
@@ -139,7 +167,13 @@ Film read_image(const std::filesystem::path& path)
     if (ext == ".pfm") return detail::decode_pfm(read_all(path), path);
     if (ext == ".ppm") return detail::decode_ppm(read_all(path), path);
 #ifdef GC_HAVE_OIIO
-    return detail::oiio_read(path);
+    const std::string prefix = "cannot read image '" + path.string() + "': ";
+    DecodedImage decoded;
+    if (const std::string why = codec_or_throw<InputError>(prefix).read(path, decoded); !why.empty())
+        throw InputError(prefix + why);
+    Film film(decoded.width, decoded.height);
+    film.data() = std::move(decoded.rgba);
+    return film;
 #else
     throw InputError("cannot read image '" + path.string() + "': reading '" + ext +
                      "' needs OpenImageIO, which this build does not include; use .pfm or .ppm");

@@ -3,12 +3,15 @@
 // Formats by extension (case-insensitive):
 //   .pfm  float RGB, built in (rows bottom to top, as the PFM spec says), alpha dropped
 //   .ppm  8-bit sRGB (binary P6), built in, alpha dropped
-//   with OpenImageIO (GC_HAVE_OIIO, CMake option GEOCOLD_WITH_OIIO):
+//   .png  written built in (png_writer.h): 8-bit sRGB RGB, metadata as tEXt chunks
+//         ("Software", "geocold:device", ... as below, all as text); read through OIIO
+//   with OpenImageIO (GC_HAVE_OIIO, CMake option GEOCOLD_WITH_OIIO; the OIIO code is the
+//   module geocold-image-oiio.so, loaded on first use: see image_codec.h, image_module.h):
 //   .exr  linear float RGBA with the metadata as attributes "geocold:device", "geocold:integrator",
 //         "geocold:scene" (strings), "geocold:spp" (int), "geocold:seconds" (float),
 //         "geocold:seed" (string: EXR has no unsigned attribute) and "Software"
 //   .tif/.tiff  linear float RGBA;  .hdr  linear float RGB
-//   .png and any other format OIIO writes: 8-bit sRGB RGB, metadata as text where the format has it
+//   any other format OIIO writes: 8-bit sRGB RGB, metadata as text where the format has it
 // 8-bit outputs are the linear values clamped to [0, 1] and encoded with the sRGB OETF
 // (IEC 61966-2-1) — no tone mapping: scale the film first if you want an exposure change.
 //
@@ -23,15 +26,29 @@
 #include <string>
 
 #include "host/image/film.h"
+#include "host/image/srgb.h"
 
 namespace gc {
 
 void write_image(const std::filesystem::path& path, const Film& film, const ImageMetadata& meta);
 
 // Fails (OutputError) before any rendering when write_image(path, ...) cannot succeed: an
-// unsupported extension (or one that needs OIIO in a build without it), a missing parent
-// directory, a target that is a directory, or a directory where no file can be created.
+// unsupported extension (or one that needs OIIO in a build without it, or an image module
+// that cannot be loaded), a missing parent directory, a target that is a directory, or a
+// directory where no file can be created. The same as check_output_location, then
+// check_output_format.
 void check_output_path(const std::filesystem::path& path);
+// The checks that need no image module: the path, its folder, and an extension to go by.
+void check_output_location(const std::filesystem::path& path);
+// Whether the format of `path` can be written; waits for the image module when the format
+// needs it (start_image_io_for lets that load overlap other work first).
+void check_output_format(const std::filesystem::path& path);
+
+// Starts loading, in the background, what reading or writing `path` will need: the image
+// module for the formats that are not built in; nothing for .pfm/.ppm (nor for writing
+// .png). Returns at once.
+enum class ImageAccess { Read, Write };
+void start_image_io_for(const std::filesystem::path& path, ImageAccess access);
 
 // .pfm and .ppm are built in; .exr/.png/.hdr/.tif/... need OIIO. Integer-valued files
 // (PNG, PPM, 8/16-bit TIFF) are decoded from sRGB to linear unless they say they are linear.
@@ -40,12 +57,6 @@ Film read_image(const std::filesystem::path& path);
 
 // True when this build reads and writes through OpenImageIO.
 bool image_io_has_oiio();
-
-// The sRGB transfer functions (IEC 61966-2-1), on [0, 1].
-float srgb_encode(float linear);
-float srgb_decode(float encoded);
-// Clamp to [0, 1] (NaN -> 0), encode, round to 8 bits.
-uint8_t linear_to_srgb8(float linear);
 
 namespace image_io_testing {
 // Makes the next write_image fail, after the temp file is written and before it is synced,

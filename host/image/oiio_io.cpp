@@ -1,22 +1,22 @@
-#include "host/image/oiio_io.h"
-
+// The OpenImageIO image module (geocold-image-oiio.so): ImageCodec on top of OIIO. Built only
+// when GEOCOLD_WITH_OIIO is on, and loaded by image_module.cpp on first use; see image_codec.h.
 #include <algorithm>
 #include <climits>
+#include <exception>
 #include <string_view>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
 
-#include "host/image/atomic_file.h"
-#include "host/image/image_io.h"
-#include "host/util/error.h"
+#include "host/image/image_codec.h"
+#include "host/image/srgb.h"
 
 #ifndef GC_VERSION
 #define GC_VERSION "unknown"
 #endif
 
-namespace gc::detail {
+namespace gc {
 namespace {
 
 // Formats that store linear float: everything else gets 8-bit sRGB.
@@ -30,21 +30,17 @@ std::string oiio_error(const std::string& primary)
     return e.empty() ? std::string("OpenImageIO reported no reason") : e;
 }
 
-}  // namespace
-
-std::string oiio_cannot_write(const std::filesystem::path& target)
+std::string no_writer(const std::filesystem::path& target)
 {
-    auto out = OIIO::ImageOutput::create(target.string());
-    if (out) return {};
     const std::string why = OIIO::geterror();
     return "OpenImageIO has no writer for '" + target.extension().string() + "'" + (why.empty() ? "" : " (" + why + ")");
 }
 
-void oiio_write(const std::filesystem::path& tmp, const std::filesystem::path& target, const Film& film,
-                const ImageMetadata& meta)
+std::string write_oiio(const std::filesystem::path& tmp, const std::filesystem::path& target, const Film& film,
+                       const ImageMetadata& meta)
 {
     auto out = OIIO::ImageOutput::create(target.string());
-    if (!out) throw OutputError(cannot_write(target) + oiio_cannot_write(target));
+    if (!out) return no_writer(target);
     const std::string format = out->format_name();
     const bool as_float = stores_float(format);
     const int channels = stores_alpha(format) ? 4 : 3;
@@ -74,28 +70,27 @@ void oiio_write(const std::filesystem::path& tmp, const std::filesystem::path& t
             else u8[i * channels + c] = linear_to_srgb8(src[i * 4 + c]);
         }
 
-    if (!out->open(tmp.string(), spec)) throw OutputError(cannot_write(target) + oiio_error(out->geterror()));
+    if (!out->open(tmp.string(), spec)) return oiio_error(out->geterror());
     const bool ok = as_float ? out->write_image(OIIO::TypeDesc::FLOAT, f.data())
                              : out->write_image(OIIO::TypeDesc::UINT8, u8.data());
     if (!ok) {
         const std::string why = oiio_error(out->geterror());
         out->close();
-        throw OutputError(cannot_write(target) + why);
+        return why;
     }
-    if (!out->close()) throw OutputError(cannot_write(target) + oiio_error(out->geterror()));
+    if (!out->close()) return oiio_error(out->geterror());
+    return {};
 }
 
-Film oiio_read(const std::filesystem::path& path)
+std::string read_oiio(const std::filesystem::path& path, DecodedImage& image)
 {
     auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw InputError("cannot read image '" + path.string() + "': " + oiio_error({}));
+    if (!in) return oiio_error({});
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        throw InputError("cannot read image '" + path.string() + "': it has no pixels");
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return "it has no pixels";
     const int nch = std::min(spec.nchannels, 4);
     std::vector<float> buf(size_t(spec.width) * spec.height * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, buf.data()))
-        throw InputError("cannot read image '" + path.string() + "': " + oiio_error(in->geterror()));
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, buf.data())) return oiio_error(in->geterror());
 
     // Integer files hold display-referred sRGB unless they say otherwise.
     const std::string cs = spec.get_string_attribute("oiio:ColorSpace");
@@ -105,9 +100,12 @@ Film oiio_read(const std::filesystem::path& path)
     int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < nch ? spec.alpha_channel : -1;
     if (alpha < 0 && (nch == 2 || nch == 4)) alpha = nch - 1;
 
-    Film film(uint32_t(spec.width), uint32_t(spec.height));
-    float* dst = film.data().data();
-    for (size_t i = 0; i < film.pixel_count(); ++i) {
+    image.width = uint32_t(spec.width);
+    image.height = uint32_t(spec.height);
+    const size_t pixels = size_t(image.width) * image.height;
+    image.rgba.assign(pixels * 4, 0.0f);
+    float* dst = image.rgba.data();
+    for (size_t i = 0; i < pixels; ++i) {
         const float* p = buf.data() + i * nch;
         for (int c = 0; c < 3; ++c) {
             const float v = p[grey ? 0 : c];
@@ -115,7 +113,48 @@ Film oiio_read(const std::filesystem::path& path)
         }
         dst[i * 4 + 3] = alpha >= 0 ? p[alpha] : 1.0f;
     }
-    return film;
+    return {};
 }
 
-}  // namespace gc::detail
+// Runs `body`, turning anything it throws (OIIO, std::bad_alloc) into the returned reason.
+template <class Body>
+std::string guarded(Body&& body)
+{
+    try {
+        return body();
+    } catch (const std::bad_alloc&) {
+        return "out of host memory";
+    } catch (const std::exception& e) {
+        return std::string("OpenImageIO failed: ") + e.what();
+    } catch (...) {
+        return "OpenImageIO failed with an unknown exception";
+    }
+}
+
+class OiioCodec final : public ImageCodec {
+public:
+    std::string cannot_write(const std::filesystem::path& target) const override
+    {
+        return guarded([&]() -> std::string { return OIIO::ImageOutput::create(target.string()) ? "" : no_writer(target); });
+    }
+
+    std::string write(const std::filesystem::path& tmp, const std::filesystem::path& target, const Film& film,
+                      const ImageMetadata& meta) const override
+    {
+        return guarded([&] { return write_oiio(tmp, target, film, meta); });
+    }
+
+    std::string read(const std::filesystem::path& path, DecodedImage& image) const override
+    {
+        return guarded([&] { return read_oiio(path, image); });
+    }
+};
+
+}  // namespace
+}  // namespace gc
+
+extern "C" __attribute__((visibility("default"))) const gc::ImageCodec* gc_image_module_v1()
+{
+    static const gc::OiioCodec codec;
+    return &codec;
+}

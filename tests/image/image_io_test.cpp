@@ -174,6 +174,28 @@ TEST_F(ImageIo, CheckOutputPathErrors)
     }
 }
 
+// The built-in PNG writer needs no OIIO: the file starts with the PNG signature and IHDR
+// (width, height, 8-bit RGB), holds the metadata as tEXt, and ends with IEND.
+TEST_F(ImageIo, PngIsWrittenWithoutOiio)
+{
+    write_image(path("s.png"), test_pattern(7, 4), test_meta());
+    std::FILE* file = std::fopen(path("s.png").c_str(), "rb");
+    ASSERT_TRUE(file);
+    std::string bytes;
+    char buffer[4096];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, file)) > 0;) bytes.append(buffer, n);
+    std::fclose(file);
+    ASSERT_GT(bytes.size(), 33u);
+    EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_EQ(bytes.substr(12, 4), "IHDR");
+    const std::string ihdr = bytes.substr(16, 13);
+    EXPECT_EQ(ihdr.substr(0, 8), std::string("\0\0\0\x07\0\0\0\x04", 8)) << "width 7, height 4";
+    EXPECT_EQ(ihdr[8], 8) << "bit depth";
+    EXPECT_EQ(ihdr[9], 2) << "colour type RGB";
+    EXPECT_NE(bytes.find(std::string("tEXtgeocold:device") + '\0' + "Test Device (OpenCL 3.0)"), std::string::npos);
+    EXPECT_EQ(bytes.substr(bytes.size() - 8, 4), "IEND");
+}
+
 #ifdef GC_HAVE_OIIO
 TEST_F(ImageIo, ExrRoundTripIsExactRgba)
 {
@@ -222,6 +244,25 @@ TEST_F(ImageIo, PngIsSrgb8AndRoundTripsWithinQuantization)
         for (uint32_t x = 0; x < f.width(); ++x)
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(g.pixel(x, y)[c], srgb_decode(float(linear_to_srgb8(f.pixel(x, y)[c])) / 255.0f), 1e-6f);
+}
+
+// PNG is written built in (png_writer.cpp): OIIO (libpng) must read its metadata back.
+TEST_F(ImageIo, PngMetadataReadableThroughOiio)
+{
+    write_image(path("m.png"), test_pattern(), test_meta());
+    auto in = OIIO::ImageInput::open(path("m.png").string());
+    ASSERT_TRUE(in) << OIIO::geterror();
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.get_string_attribute("geocold:device"), "Test Device (OpenCL 3.0)");
+    EXPECT_EQ(spec.get_string_attribute("geocold:integrator"), "path");
+    EXPECT_EQ(spec.get_string_attribute("geocold:scene"), "scenes/cornell-box/cornell.obj");
+    EXPECT_EQ(spec.get_string_attribute("geocold:spp"), "1024");
+    EXPECT_EQ(spec.get_string_attribute("geocold:seed"), "4000000000");
+    const std::string sw = spec.get_string_attribute("Software");
+    const std::string cs = spec.get_string_attribute("oiio:ColorSpace");
+    std::printf("Software = '%s', oiio:ColorSpace = '%s'\n", sw.c_str(), cs.c_str());
+    EXPECT_EQ(sw.rfind("geocold-cl ", 0), 0u) << sw;
+    EXPECT_EQ(cs, "sRGB");
 }
 
 TEST_F(ImageIo, HdrRoundTripIsClose)
