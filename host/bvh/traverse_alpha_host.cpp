@@ -25,11 +25,7 @@ bool trace_any(const FlatBvh& bvh, const Ray& ray, const AlphaBuffers& a)
 dev::GcHit trace_brute_force(const Scene& scene, const Ray& ray, const AlphaBuffers& a)
 {
     const dev::GcRay device_ray = to_device(ray);
-    dev::GcHit best;
-    best.t = GC_INFINITY;
-    best.u = 0.0f;
-    best.v = 0.0f;
-    best.prim = GC_INVALID;
+    dev::GcHit best = dev::gc_no_hit();
     if (!dev::gc_ray_is_valid(device_ray)) return best;
     const dev::GcRayPre pre = dev::gc_ray_precompute(device_ray);
     for (std::size_t i = 0; i < scene.triangle_count(); ++i) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "host/cl/context.h"
 #include "host/cl/error.h"
@@ -117,5 +118,14 @@ private:
     std::string m_name;
     std::string m_device_name;
 };
+
+// A read-only device copy of `data`: scene data the kernels only read.
+template <class T>
+Buffer<T> read_only_buffer(const Context& context, const std::vector<T>& data, std::string name)
+{
+    Buffer<T> buffer = Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, std::move(name));
+    buffer.write(std::span<const T>(data));
+    return buffer;
+}
 
 }  // namespace gc::cl

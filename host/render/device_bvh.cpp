@@ -6,18 +6,6 @@
 #include "host/util/error.h"
 
 namespace gc {
-namespace {
-
-template <class T>
-cl::Buffer<T> upload_vector(const cl::Context& context, const std::vector<T>& data, const char* name)
-{
-    cl::Buffer<T> buffer = cl::Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, name);
-    buffer.write(data);
-    return buffer;
-}
-
-}  // namespace
-
 BvhLayout bvh_layout_for(const cl::DeviceInfo& device)
 {
     if (const char* env = std::getenv("GEOCOLD_BVH_WIDTH"); env && *env) {
@@ -47,11 +35,11 @@ DeviceBvh DeviceBvh::upload(const cl::Context& context, const FlatBvh& bvh, BvhL
     d.m_layout = layout;
     if (layout == BvhLayout::Wide) {
         const WideBvh wide = widen(bvh);
-        d.m_wide_nodes = upload_vector(context, wide.nodes, "bvh4 nodes");
-        d.m_wide_blocks = upload_vector(context, wide.blocks, "bvh4 triangle blocks");
+        d.m_wide_nodes = cl::read_only_buffer(context, wide.nodes, "bvh4 nodes");
+        d.m_wide_blocks = cl::read_only_buffer(context, wide.blocks, "bvh4 triangle blocks");
     } else {
-        d.m_nodes = upload_vector(context, bvh.nodes, "bvh nodes");
-        d.m_triangles = upload_vector(context, bvh.triangles, "bvh triangles");
+        d.m_nodes = cl::read_only_buffer(context, bvh.nodes, "bvh nodes");
+        d.m_triangles = cl::read_only_buffer(context, bvh.triangles, "bvh triangles");
     }
     return d;
 }

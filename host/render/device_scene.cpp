@@ -5,18 +5,6 @@
 #include "host/render/scene_convert.h"
 
 namespace gc {
-namespace {
-
-template <class T>
-cl::Buffer<T> upload_buffer(const cl::Context& context, const std::vector<T>& data, const char* name)
-{
-    cl::Buffer<T> buffer = cl::Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, name);
-    buffer.write(data);
-    return buffer;
-}
-
-}  // namespace
-
 std::uint64_t DeviceScene::bytes() const
 {
     return bvh.bytes() + attribs.bytes() + materials.bytes() + textures.bytes() +
@@ -32,15 +20,15 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     const std::vector<dev::GcEmitter> emitters = make_emitters(scene);
     const std::vector<dev::GcPointLight> lights = make_point_lights(scene);
     d.bvh = DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()));
-    d.attribs = upload_buffer(context, make_triangle_attribs(scene), "triangle attributes");
-    d.materials = upload_buffer(context, make_materials(scene), "materials");
-    d.textures = upload_buffer(context, textures.textures, "textures");
-    d.texels = upload_buffer(context, textures.texels, "texels");
-    d.emitters = upload_buffer(context, emitters, "emitters");
-    d.point_lights = upload_buffer(context, lights, "point lights");
-    d.env_pixels = upload_buffer(context, environment.pixels, "environment map");
-    d.env_marginal = upload_buffer(context, environment.marginal_cdf, "environment marginal cdf");
-    d.env_conditional = upload_buffer(context, environment.conditional_cdf, "environment conditional cdf");
+    d.attribs = cl::read_only_buffer(context, make_triangle_attribs(scene), "triangle attributes");
+    d.materials = cl::read_only_buffer(context, make_materials(scene), "materials");
+    d.textures = cl::read_only_buffer(context, textures.textures, "textures");
+    d.texels = cl::read_only_buffer(context, textures.texels, "texels");
+    d.emitters = cl::read_only_buffer(context, emitters, "emitters");
+    d.point_lights = cl::read_only_buffer(context, lights, "point lights");
+    d.env_pixels = cl::read_only_buffer(context, environment.pixels, "environment map");
+    d.env_marginal = cl::read_only_buffer(context, environment.marginal_cdf, "environment marginal cdf");
+    d.env_conditional = cl::read_only_buffer(context, environment.conditional_cdf, "environment conditional cdf");
     d.triangle_count = static_cast<std::uint32_t>(scene.triangle_count());
     d.emitter_count = static_cast<std::uint32_t>(emitters.size());
     d.point_light_count = static_cast<std::uint32_t>(lights.size());

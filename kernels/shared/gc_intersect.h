@@ -124,6 +124,17 @@ GC_FUNC bool gc_ray_is_valid(GcRay ray)
     return not_nan && nonzero && o.w <= d.w;
 }
 
+/* The miss record: prim GC_INVALID, t = +inf, u = v = 0. */
+GC_FUNC GcHit gc_no_hit(void)
+{
+    GcHit hit;
+    hit.t = GC_INFINITY;
+    hit.u = 0.0f;
+    hit.v = 0.0f;
+    hit.prim = GC_INVALID;
+    return hit;
+}
+
 GC_FUNC GcRayPre gc_ray_precompute(GcRay ray)
 {
     GcRayPre r;
@@ -236,11 +247,7 @@ GC_FUNC bool gc_aabb_entry_within(float entry, float tmax)
  */
 GC_FUNC GcHit gc_intersect_triangle(GcRayPre r, float3 v0, float3 v1, float3 v2, float tmax)
 {
-    GcHit hit;
-    hit.t = GC_INFINITY;
-    hit.u = 0.0f;
-    hit.v = 0.0f;
-    hit.prim = GC_INVALID;
+    GcHit hit = gc_no_hit();
 
     float3 o = GC_XYZ(r.org);
     float3 a = v0 - o;

@@ -81,11 +81,7 @@ GC_NAMESPACE_BEGIN
 /* One body for both queries: any_hit returns at the first accepted triangle. */
 GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
 {
-    GcHit best;
-    best.t = GC_INFINITY;
-    best.u = 0.0f;
-    best.v = 0.0f;
-    best.prim = GC_INVALID;
+    GcHit best = gc_no_hit();
     if (!gc_ray_is_valid(ray)) return best;
 
     GcRayPre r = gc_ray_precompute(ray);

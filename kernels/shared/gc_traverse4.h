@@ -255,11 +255,7 @@ static __attribute__((noinline)) GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, b
 GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
 #endif
 {
-    GcHit best;
-    best.t = GC_INFINITY;
-    best.u = 0.0f;
-    best.v = 0.0f;
-    best.prim = GC_INVALID;
+    GcHit best = gc_no_hit();
     if (!gc_ray_is_valid(ray)) return best;
 
     GcRayPre r = gc_ray_precompute(ray);
