@@ -258,8 +258,9 @@ Environment:
   GEOCOLD_CACHE_ALWAYS=1   write it on PoCL too (by default PoCL's own cache is used there)
   GEOCOLD_PATH_KERNEL      wavefront|megakernel: the path integrator's form (default:
                            megakernel on CPUs, wavefront on GPUs; same image either way)
-  GEOCOLD_BVH_WIDTH        2|4: the BVH layout traversed (default: 4 on CPUs, where one
-                           ray tests 4 boxes at once, 2 on GPUs; same image either way)
+  GEOCOLD_BVH_WIDTH        2|4|8: the BVH layout traversed (default: 8 on CPUs with AVX,
+                           where one ray tests 8 boxes at once, else 4; 2 on GPUs; same
+                           image either way)
   GEOCOLD_IMAGE_MODULE     the OpenImageIO module, loaded only for formats that are not
                            built in (.exr, .hdr, .tif, reading .png; .pfm/.ppm and writing
                            .png need none). Default: geocold-image-oiio.so beside

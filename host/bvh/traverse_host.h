@@ -23,6 +23,8 @@ dev::GcHit trace_brute_force(const Scene& scene, const Ray& ray);
 // The same queries over the BVH4 layout CPUs read (traverse_wide_host.cpp).
 dev::GcHit trace_closest(const WideBvh& bvh, const Ray& ray);
 bool trace_any(const WideBvh& bvh, const Ray& ray);
+dev::GcHit trace_closest(const Wide8Bvh& bvh, const Ray& ray);
+bool trace_any(const Wide8Bvh& bvh, const Ray& ray);
 
 // The buffers the alpha-MASK test reads (kernels/shared/gc_alpha.h), in device form, as
 // host/render/scene_convert.h makes them for upload. textures/texels may be null when no
@@ -41,6 +43,8 @@ dev::GcHit trace_closest(const FlatBvh& bvh, const Ray& ray, const AlphaBuffers&
 bool trace_any(const FlatBvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
 dev::GcHit trace_closest(const WideBvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
 bool trace_any(const WideBvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
+dev::GcHit trace_closest(const Wide8Bvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
+bool trace_any(const Wide8Bvh& bvh, const Ray& ray, const AlphaBuffers& alpha);
 dev::GcHit trace_brute_force(const Scene& scene, const Ray& ray, const AlphaBuffers& alpha);
 
 }  // namespace gc

@@ -11,7 +11,7 @@
 namespace gc {
 namespace {
 
-constexpr std::uint32_t kLanes = 4;
+constexpr std::uint32_t kBlockLanes = 4;
 
 struct Bvh2View {
     const FlatBvh& bvh;
@@ -23,7 +23,7 @@ struct Bvh2View {
     std::uint32_t first(std::uint32_t n) const { return dev::gc_node_first(bvh.nodes[n]); }
     std::uint32_t triangles(std::uint32_t n) const { return tri_end[n] - tri_first[n]; }
     // A subtree tested as one leaf: a BVH2 leaf, or any subtree that fits one block.
-    bool becomes_leaf(std::uint32_t n) const { return is_leaf(n) || triangles(n) <= kLanes; }
+    bool becomes_leaf(std::uint32_t n) const { return is_leaf(n) || triangles(n) <= kBlockLanes; }
     float area(std::uint32_t n) const
     {
         const dev::GcBvhNode& node = bvh.nodes[n];
@@ -65,6 +65,20 @@ dev::GcBvh4Node empty_node()
     return node;
 }
 
+void make_empty(dev::GcBvh4Node& node)
+{
+    node = empty_node();
+}
+
+void make_empty(dev::GcBvh8Node& node)
+{
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    node.lo_x0 = node.lo_x1 = node.lo_y0 = node.lo_y1 = node.lo_z0 = node.lo_z1 = dev::float4(inf);
+    node.hi_x0 = node.hi_x1 = node.hi_y0 = node.hi_y1 = node.hi_z0 = node.hi_z1 = dev::float4(-inf);
+    node.child0 = node.child1 = dev::uint4(GC_INVALID);
+    node.pad0 = node.pad1 = dev::uint4(0u);
+}
+
 dev::GcTriangle4 empty_block()
 {
     dev::GcTriangle4 block{};
@@ -84,16 +98,30 @@ void set_slot(dev::GcBvh4Node& node, int slot, const dev::GcBvhNode& box, std::u
     node.child[slot] = child;
 }
 
+void set_slot(dev::GcBvh8Node& node, int slot, const dev::GcBvhNode& box, std::uint32_t child)
+{
+    const bool upper = slot >= 4;
+    const int k = slot & 3;
+    (upper ? node.lo_x1 : node.lo_x0)[k] = box.lo.x;
+    (upper ? node.lo_y1 : node.lo_y0)[k] = box.lo.y;
+    (upper ? node.lo_z1 : node.lo_z0)[k] = box.lo.z;
+    (upper ? node.hi_x1 : node.hi_x0)[k] = box.hi.x;
+    (upper ? node.hi_y1 : node.hi_y0)[k] = box.hi.y;
+    (upper ? node.hi_z1 : node.hi_z0)[k] = box.hi.z;
+    (upper ? node.child1 : node.child0)[k] = child;
+}
+
+template <class Node, std::uint32_t Width>
 class Widener {
 public:
-    explicit Widener(const Bvh2View& view, WideBvh& out) : m_view(view), m_out(out) {}
+    explicit Widener(const Bvh2View& view, WideBvhOf<Node>& out) : m_view(view), m_out(out) {}
 
     // Emits the blocks of BVH2 subtree `n` and returns its leaf reference.
     std::uint32_t leaf(std::uint32_t n)
     {
         const std::uint32_t first_tri = m_view.tri_first[n];
         const std::uint32_t count = m_view.triangles(n);
-        const std::uint32_t blocks = (count + kLanes - 1) / kLanes;
+        const std::uint32_t blocks = (count + kBlockLanes - 1) / kBlockLanes;
         const std::size_t first_block = m_out.blocks.size();
         if (blocks == 0 || blocks > GC_BVH4_LEAF_MAX_BLOCKS)
             throw std::logic_error("BVH4: a leaf of " + std::to_string(count) + " triangles does not fit one reference");
@@ -102,8 +130,8 @@ public:
                                     " triangle blocks");
         for (std::uint32_t b = 0; b < blocks; ++b) {
             dev::GcTriangle4 block = empty_block();
-            for (std::uint32_t lane = 0; lane < kLanes; ++lane) {
-                const std::uint32_t i = b * kLanes + lane;
+            for (std::uint32_t lane = 0; lane < kBlockLanes; ++lane) {
+                const std::uint32_t i = b * kBlockLanes + lane;
                 if (i >= count) break;
                 const dev::GcTriangle& tri = m_view.bvh.triangles[first_tri + i];
                 block.v0x[lane] = tri.v0.x;
@@ -126,11 +154,11 @@ public:
     // Emits the BVH4 node for BVH2 inner node `n` (and its subtree) and returns its index.
     std::uint32_t inner(std::uint32_t n)
     {
-        std::uint32_t children[kLanes];
+        std::uint32_t children[Width];
         std::uint32_t count = 0;
         children[count++] = m_view.first(n);
         children[count++] = m_view.first(n) + 1;
-        while (count < kLanes) {
+        while (count < Width) {
             int widest = -1;
             for (std::uint32_t k = 0; k < count; ++k) {
                 if (m_view.becomes_leaf(children[k])) continue;
@@ -147,8 +175,9 @@ public:
             ++count;
         }
         const auto index = static_cast<std::uint32_t>(m_out.nodes.size());
-        if (index > ~GC_BVH4_LEAF) throw std::length_error("BVH4: too many nodes");
-        m_out.nodes.push_back(empty_node());
+        if (index > ~GC_BVH4_LEAF) throw std::length_error("wide BVH: too many nodes");
+        m_out.nodes.emplace_back();
+        make_empty(m_out.nodes.back());
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::uint32_t c = children[k];
             const std::uint32_t ref = m_view.becomes_leaf(c) ? leaf(c) : inner(c);
@@ -159,38 +188,54 @@ public:
 
 private:
     const Bvh2View& m_view;
-    WideBvh& m_out;
+    WideBvhOf<Node>& m_out;
 };
 
-}  // namespace
-
-WideBvh widen(const FlatBvh& bvh)
+template <class Node, std::uint32_t Width>
+WideBvhOf<Node> widen_to(const FlatBvh& bvh)
 {
-    WideBvh out;
+    WideBvhOf<Node> out;
+    out.nodes.emplace_back();
+    make_empty(out.nodes[0]);
     if (bvh.nodes.empty() || bvh.scene_triangle_count() == 0) {
-        out.nodes.push_back(empty_node());
         out.blocks.push_back(empty_block());
         return out;
     }
     Bvh2View view{bvh, {}, {}};
     compute_ranges(view);
-    out.nodes.reserve(bvh.nodes.size() / 2 + 1);
     out.blocks.reserve(bvh.triangles.size() / 2 + 1);
+    Widener<Node, Width> widener(view, out);
     if (view.becomes_leaf(0)) {
-        // A root that is one leaf still needs an inner BVH4 root: traversal starts at node 0.
-        out.nodes.push_back(empty_node());
-        Widener widener(view, out);
+        // A root that is one leaf still needs an inner root: traversal starts at node 0.
         const std::uint32_t ref = widener.leaf(0);
         set_slot(out.nodes[0], 0, bvh.nodes[0], ref);
         return out;
     }
-    Widener(view, out).inner(0);
+    out.nodes.clear();
+    widener.inner(0);
     return out;
+}
+
+}  // namespace
+
+WideBvh widen(const FlatBvh& bvh)
+{
+    return widen_to<dev::GcBvh4Node, 4>(bvh);
+}
+
+Wide8Bvh widen8(const FlatBvh& bvh)
+{
+    return widen_to<dev::GcBvh8Node, 8>(bvh);
 }
 
 std::size_t wide_bvh_bytes(const WideBvh& bvh)
 {
     return bvh.nodes.size() * sizeof(dev::GcBvh4Node) + bvh.blocks.size() * sizeof(dev::GcTriangle4);
+}
+
+std::size_t wide_bvh_bytes(const Wide8Bvh& bvh)
+{
+    return bvh.nodes.size() * sizeof(dev::GcBvh8Node) + bvh.blocks.size() * sizeof(dev::GcTriangle4);
 }
 
 }  // namespace gc

@@ -18,10 +18,13 @@ namespace gc {
 // sibling's), node 0 the root; GcTriangle4 blocks in the order their leaves are met. The
 // empty scene gives a root with four empty slots over one dummy block (prim GC_INVALID in
 // every lane), so both buffers are non-empty and every ray misses.
-struct WideBvh {
-    std::vector<dev::GcBvh4Node> nodes;
+template <class Node>
+struct WideBvhOf {
+    std::vector<Node> nodes;
     std::vector<dev::GcTriangle4> blocks;
 };
+using WideBvh = WideBvhOf<dev::GcBvh4Node>;
+using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h)
 
 // Collapse rules (after Embree's BVH4 builders, and Wald et al. 2008, "Getting rid of
 // packets"): a BVH2 subtree with at most four triangles becomes one leaf of one block, tested
@@ -30,8 +33,10 @@ struct WideBvh {
 // the child with the largest surface area that is not such a leaf, until it has four. The
 // BVH4 is never deeper than the BVH2, so gc_traverse4.h's stack bound holds.
 WideBvh widen(const FlatBvh& bvh);
+Wide8Bvh widen8(const FlatBvh& bvh);  // the same rules with eight children per node
 
 // Bytes the layout occupies on a device.
 std::size_t wide_bvh_bytes(const WideBvh& bvh);
+std::size_t wide_bvh_bytes(const Wide8Bvh& bvh);
 
 }  // namespace gc

@@ -10,23 +10,38 @@ BvhLayout bvh_layout_for(const cl::DeviceInfo& device)
 {
     if (const char* env = std::getenv("GEOCOLD_BVH_WIDTH"); env && *env) {
         const std::string width(env);
-        if (width != "2" && width != "4")
-            throw UsageError("GEOCOLD_BVH_WIDTH must be 2 or 4, not '" + width + "'");
-        return width == "4" ? BvhLayout::Wide : BvhLayout::Binary;
+        if (width != "2" && width != "4" && width != "8")
+            throw UsageError("GEOCOLD_BVH_WIDTH must be 2, 4 or 8, not '" + width + "'");
+        return width == "8" ? BvhLayout::Wide8 : (width == "4" ? BvhLayout::Wide : BvhLayout::Binary);
     }
     // A GPU runs a warp of rays in lock step, and a float4 there is four scalar instructions:
-    // the BVH2 measured faster. CPUs gain from the 4-wide tests (figures in the issue notes).
-    return device.is_gpu ? BvhLayout::Binary : BvhLayout::Wide;
+    // the BVH2 measured faster (H200: dragon diffuse 1229 vs 1040 Mrays/s with the BVH4).
+    // CPUs gain from the wide tests: BVH4 over BVH2 1.2-1.6x, and BVH8 over BVH4 where the
+    // SIMD unit holds eight floats (AVX), +3-16 % rays and +2-7 % path samples on the H200
+    // box's PoCL (medians of 3, Cornell, bunny, dragon). PoCL reports that width as the
+    // preferred float vector width (16 on AVX-512, 8 on AVX2, 4 on SSE).
+    if (device.is_gpu) return BvhLayout::Binary;
+    return device.preferred_vector_width_float >= 8 ? BvhLayout::Wide8 : BvhLayout::Wide;
 }
 
 std::string program_options(BvhLayout layout)
 {
-    return layout == BvhLayout::Wide ? "-D GC_BVH_WIDE" : "";
+    switch (layout) {
+    case BvhLayout::Binary: return "";
+    case BvhLayout::Wide: return "-D GC_BVH_WIDE";
+    case BvhLayout::Wide8: return "-D GC_BVH_WIDE -D GC_BVH_WIDE8";
+    }
+    return "";
 }
 
 const char* layout_name(BvhLayout layout)
 {
-    return layout == BvhLayout::Wide ? "BVH4" : "BVH2";
+    switch (layout) {
+    case BvhLayout::Binary: return "BVH2";
+    case BvhLayout::Wide: return "BVH4";
+    case BvhLayout::Wide8: return "BVH8";
+    }
+    return "BVH2";
 }
 
 DeviceBvh DeviceBvh::upload(const cl::Context& context, const FlatBvh& bvh, BvhLayout layout)
@@ -37,6 +52,10 @@ DeviceBvh DeviceBvh::upload(const cl::Context& context, const FlatBvh& bvh, BvhL
         const WideBvh wide = widen(bvh);
         d.m_wide_nodes = cl::read_only_buffer(context, wide.nodes, "bvh4 nodes");
         d.m_wide_blocks = cl::read_only_buffer(context, wide.blocks, "bvh4 triangle blocks");
+    } else if (layout == BvhLayout::Wide8) {
+        const Wide8Bvh wide = widen8(bvh);
+        d.m_wide8_nodes = cl::read_only_buffer(context, wide.nodes, "bvh8 nodes");
+        d.m_wide_blocks = cl::read_only_buffer(context, wide.blocks, "bvh8 triangle blocks");
     } else {
         d.m_nodes = cl::read_only_buffer(context, bvh.nodes, "bvh nodes");
         d.m_triangles = cl::read_only_buffer(context, bvh.triangles, "bvh triangles");
@@ -46,17 +65,22 @@ DeviceBvh DeviceBvh::upload(const cl::Context& context, const FlatBvh& bvh, BvhL
 
 cl_mem DeviceBvh::nodes() const
 {
-    return m_layout == BvhLayout::Wide ? m_wide_nodes.mem() : m_nodes.mem();
+    switch (m_layout) {
+    case BvhLayout::Binary: return m_nodes.mem();
+    case BvhLayout::Wide: return m_wide_nodes.mem();
+    case BvhLayout::Wide8: return m_wide8_nodes.mem();
+    }
+    return m_nodes.mem();
 }
 
 cl_mem DeviceBvh::triangles() const
 {
-    return m_layout == BvhLayout::Wide ? m_wide_blocks.mem() : m_triangles.mem();
+    return m_layout == BvhLayout::Binary ? m_triangles.mem() : m_wide_blocks.mem();
 }
 
 std::uint64_t DeviceBvh::bytes() const
 {
-    return m_nodes.bytes() + m_triangles.bytes() + m_wide_nodes.bytes() + m_wide_blocks.bytes();
+    return m_nodes.bytes() + m_triangles.bytes() + m_wide_nodes.bytes() + m_wide8_nodes.bytes() + m_wide_blocks.bytes();
 }
 
 }  // namespace gc

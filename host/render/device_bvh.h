@@ -1,7 +1,8 @@
-// The BVH as one device reads it: BVH2 (GcBvhNode + GcTriangle) on GPUs, BVH4 (GcBvh4Node +
-// GcTriangle4, host/bvh/widen.h) on CPUs, where one ray tests four boxes or four triangles
-// with SIMD instructions (kernels/shared/gc_traverse4.h). Both give the same hits, bit for
-// bit, so the choice is about speed only. Programs that trace rays must be built with
+// The BVH as one device reads it: BVH2 (GcBvhNode + GcTriangle) on GPUs; on CPUs BVH8
+// (GcBvh8Node, gc_traverse8.h) where the SIMD unit holds eight floats, else BVH4 (GcBvh4Node,
+// gc_traverse4.h), with GcTriangle4 leaves (host/bvh/widen.h): one ray tests eight or four
+// boxes, then four triangles, with SIMD instructions. All give the same hits, bit for bit,
+// so the choice is about speed only. Programs that trace rays must be built with
 // program_options(layout), which selects the matching traversal in the kernels.
 #pragma once
 
@@ -14,16 +15,16 @@
 
 namespace gc {
 
-enum class BvhLayout { Binary, Wide };
+enum class BvhLayout { Binary, Wide, Wide8 };
 
-// BVH4 on CPUs, BVH2 on GPUs; GEOCOLD_BVH_WIDTH=2|4 overrides (A/B benchmarks, tests).
-// Throws UsageError for any other value.
+// BVH8 or BVH4 on CPUs, BVH2 on GPUs; GEOCOLD_BVH_WIDTH=2|4|8 overrides (A/B benchmarks,
+// tests). Throws UsageError for any other value.
 BvhLayout bvh_layout_for(const cl::DeviceInfo& device);
 
-// "-D GC_BVH_WIDE" for the BVH4, "" for the BVH2.
+// "" for the BVH2, "-D GC_BVH_WIDE" for the BVH4, "-D GC_BVH_WIDE -D GC_BVH_WIDE8" for the BVH8.
 std::string program_options(BvhLayout layout);
 
-const char* layout_name(BvhLayout layout);  // "BVH2" or "BVH4"
+const char* layout_name(BvhLayout layout);  // "BVH2", "BVH4" or "BVH8"
 
 class DeviceBvh {
 public:
@@ -43,6 +44,7 @@ private:
     cl::Buffer<dev::GcTriangle> m_triangles;
     cl::Buffer<dev::GcBvh4Node> m_wide_nodes;
     cl::Buffer<dev::GcTriangle4> m_wide_blocks;
+    cl::Buffer<dev::GcBvh8Node> m_wide8_nodes;
 };
 
 }  // namespace gc

@@ -4,9 +4,10 @@
  * tris[first .. first + count); count == 0 marks an inner node) and GcTriangle[] in leaf
  * order (v0.w holds the scene triangle index). The same body runs in the OpenCL kernels, in
  * the host reference (host/bvh/traverse_host.cpp) and in GLSL (kernels/vk). Programs built
- * with -D GC_BVH_WIDE (CPUs) get the BVH4 body of gc_traverse4.h instead, with the same
- * results; the buffer types are then GcBvh4Node and GcTriangle4 (GcTraversalNode and
- * GcTraversalTriangle in gc_types.h name whichever layout is compiled).
+ * for CPUs get the BVH4 body of gc_traverse4.h (-D GC_BVH_WIDE) or the BVH8 body of
+ * gc_traverse8.h (-D GC_BVH_WIDE -D GC_BVH_WIDE8) instead, with the same results; the
+ * buffer types then change (GcTraversalNode and GcTraversalTriangle in gc_types.h name
+ * whichever layout is compiled).
  *
  * Buffers come in through four macros, so the body does not care whether they are pointers
  * or shader-storage globals. Defaults (OpenCL C and C++):
@@ -71,7 +72,10 @@
  * node per level below the root, so depth <= stack size is enough. */
 #define GC_BVH_MAX_DEPTH 64u
 
-#if defined(GC_BVH_WIDE)
+#if defined(GC_BVH_WIDE8)
+/* CPUs with 8-wide SIMD: the BVH8 layout's gc_trace_impl. */
+#include "gc_traverse8.h"
+#elif defined(GC_BVH_WIDE)
 /* CPUs: the BVH4 layout's gc_trace_impl. */
 #include "gc_traverse4.h"
 #else

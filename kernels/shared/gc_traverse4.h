@@ -242,6 +242,7 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
         }                                                                                          \
     }
 
+#if !defined(GC_TRAVERSE4_HELPERS_ONLY)
 /* One body for both queries: any_hit returns at the first accepted triangle.
  *
  * Not inlined in OpenCL: PoCL inlines every call by default, so a kernel that asks for both
@@ -325,6 +326,7 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
 #undef GC_BVH4_PUSH
 #undef GC_BVH4_SOLID
 #undef GC_BVH4_ACCEPT
+#endif /* !GC_TRAVERSE4_HELPERS_ONLY */
 
 GC_NAMESPACE_END
 

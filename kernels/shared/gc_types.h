@@ -65,6 +65,29 @@ GC_STRUCT(GcBvh4Node) {
 #define GC_BVH4_LEAF_FIRST_MASK 0x07ffffffu
 #define GC_BVH4_LEAF_MAX_BLOCKS 16u
 
+/* BVH8 node, 256 bytes, for CPUs with 8-wide SIMD (AVX2, AVX-512): the BVH4 node with eight
+ * slots, each quantity split into lanes 0-3 (…0) and 4-7 (…1) so that the struct keeps to
+ * float4/uint4 fields (gc_platform.h); the OpenCL traversal joins each pair into a float8
+ * (gc_traverse8.h). Child references and leaves as in GcBvh4Node. */
+GC_STRUCT(GcBvh8Node) {
+    float4 lo_x0;
+    float4 lo_x1;
+    float4 hi_x0;
+    float4 hi_x1;
+    float4 lo_y0;
+    float4 lo_y1;
+    float4 hi_y0;
+    float4 hi_y1;
+    float4 lo_z0;
+    float4 lo_z1;
+    float4 hi_z0;
+    float4 hi_z1;
+    uint4 child0;
+    uint4 child1;
+    uint4 pad0; /* 0; four 64-byte cache lines */
+    uint4 pad1;
+} GC_STRUCT_END(GcBvh8Node)
+
 /* Four triangles of a BVH4 leaf in SoA form, tested together by one ray. Lane k is the
  * triangle (v0x.k, v0y.k, v0z.k), (v1...), (v2...); prim.k is its scene triangle index and
  * flags.k its GC_TRI_* flags. Unused lanes have all vertices at the origin (zero area, never
@@ -258,9 +281,13 @@ GC_STRUCT(GcShadowRay) {
 #define GC_COUNTER_COUNT 4u
 
 /* The BVH layout the traversal kernels read: BVH2 (GcBvhNode + GcTriangle) unless the host
- * builds the program with -D GC_BVH_WIDE, then BVH4 (GcBvh4Node + GcTriangle4). Kernels
- * declare their BVH buffers with these names, so one source serves both layouts. */
-#if defined(GC_BVH_WIDE)
+ * builds the program with -D GC_BVH_WIDE, then BVH4 (GcBvh4Node + GcTriangle4), or with
+ * -D GC_BVH_WIDE -D GC_BVH_WIDE8, then BVH8 (GcBvh8Node + GcTriangle4). Kernels declare
+ * their BVH buffers with these names, so one source serves every layout. */
+#if defined(GC_BVH_WIDE8)
+#define GcTraversalNode GcBvh8Node
+#define GcTraversalTriangle GcTriangle4
+#elif defined(GC_BVH_WIDE)
 #define GcTraversalNode GcBvh4Node
 #define GcTraversalTriangle GcTriangle4
 #else
@@ -283,6 +310,7 @@ GC_CHECK_POD(GcHit);
 GC_CHECK_POD(GcBvhNode);
 GC_CHECK_POD(GcTriangle);
 GC_CHECK_POD(GcBvh4Node);
+GC_CHECK_POD(GcBvh8Node);
 GC_CHECK_POD(GcTriangle4);
 GC_CHECK_POD(GcTriangleAttribs);
 GC_CHECK_POD(GcMaterial);
@@ -299,6 +327,7 @@ static_assert(sizeof(GcHit) == 16 && offsetof(GcHit, prim) == 12);
 static_assert(sizeof(GcBvhNode) == 32 && offsetof(GcBvhNode, hi) == 16);
 static_assert(sizeof(GcTriangle) == 48 && offsetof(GcTriangle, v2) == 32);
 static_assert(sizeof(GcBvh4Node) == 128 && offsetof(GcBvh4Node, child) == 96);
+static_assert(sizeof(GcBvh8Node) == 256 && offsetof(GcBvh8Node, child0) == 192);
 static_assert(sizeof(GcTriangle4) == 176 && offsetof(GcTriangle4, prim) == 144);
 static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng) == 48 &&
               offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&

@@ -123,7 +123,7 @@ struct TraceComparison {
     std::size_t prim_mismatches = 0;
     std::size_t t_mismatches = 0;   // relative difference above 1e-5
     std::size_t any_mismatches = 0; // any-hit disagrees with closest-hit
-    std::size_t wide_mismatches = 0; // the BVH4 layout's closest or any hit differs from the BVH2's
+    std::size_t wide_mismatches = 0; // the BVH4 or BVH8 layout's closest or any hit differs from the BVH2's
     double max_rel_t_diff = 0.0;
 };
 
@@ -142,12 +142,14 @@ inline TraceComparison compare_with_brute_force(const FlatBvh& bvh, const Scene&
 {
     TraceComparison c;
     const WideBvh wide = widen(bvh);
+    const Wide8Bvh wide8 = widen8(bvh);
     for (const Ray& ray : rays) {
         ++c.rays;
         const dev::GcHit bvh_hit = trace_closest(bvh, ray);
         const dev::GcHit ref = trace_brute_force(scene, ray);
         const bool any = trace_any(bvh, ray);
         if (!same_bits(trace_closest(wide, ray), bvh_hit) || trace_any(wide, ray) != any) ++c.wide_mismatches;
+        if (!same_bits(trace_closest(wide8, ray), bvh_hit) || trace_any(wide8, ray) != any) ++c.wide_mismatches;
         if (ref.prim != GC_INVALID) ++c.hits;
         if (bvh_hit.prim != ref.prim) {
             if (++c.prim_mismatches <= 5)
@@ -168,7 +170,7 @@ inline TraceComparison compare_with_brute_force(const FlatBvh& bvh, const Scene&
 inline void expect_agreement(const TraceComparison& c, const char* scene_name)
 {
     std::printf("[ %s ] %zu rays, %zu hits, prim mismatches %zu, t/uv mismatches %zu (max rel t diff %.3g), "
-                "any-hit mismatches %zu, BVH4 vs BVH2 mismatches %zu\n",
+                "any-hit mismatches %zu, BVH4/8 vs BVH2 mismatches %zu\n",
                 scene_name, c.rays, c.hits, c.prim_mismatches, c.t_mismatches, c.max_rel_t_diff, c.any_mismatches,
                 c.wide_mismatches);
     EXPECT_EQ(c.wide_mismatches, 0u) << scene_name;

@@ -22,17 +22,54 @@ struct WideShape {
     std::uint32_t max_blocks = 0; // most blocks in one leaf
 };
 
-bool slot_contains(const dev::GcBvh4Node& n, int k, float x, float y, float z)
+// One child slot of a BVH4 or BVH8 node, so one checker serves both layouts.
+struct Slot {
+    float lo[3];
+    float hi[3];
+    std::uint32_t ref;
+
+    bool contains(float x, float y, float z) const
+    {
+        return lo[0] <= x && x <= hi[0] && lo[1] <= y && y <= hi[1] && lo[2] <= z && z <= hi[2];
+    }
+};
+using SlotNodes = std::vector<std::vector<Slot>>;
+
+SlotNodes slots_of(const WideBvh& wide)
 {
-    return n.lo_x[k] <= x && x <= n.hi_x[k] && n.lo_y[k] <= y && y <= n.hi_y[k] && n.lo_z[k] <= z && z <= n.hi_z[k];
+    SlotNodes out;
+    for (const dev::GcBvh4Node& n : wide.nodes) {
+        out.emplace_back();
+        for (int k = 0; k < 4; ++k)
+            out.back().push_back({{n.lo_x[k], n.lo_y[k], n.lo_z[k]}, {n.hi_x[k], n.hi_y[k], n.hi_z[k]}, n.child[k]});
+    }
+    return out;
+}
+
+SlotNodes slots_of(const Wide8Bvh& wide)
+{
+    SlotNodes out;
+    for (const dev::GcBvh8Node& n : wide.nodes) {
+        out.emplace_back();
+        for (int k = 0; k < 8; ++k) {
+            const bool up = k >= 4;
+            const int j = k & 3;
+            out.back().push_back({{(up ? n.lo_x1 : n.lo_x0)[j], (up ? n.lo_y1 : n.lo_y0)[j], (up ? n.lo_z1 : n.lo_z0)[j]},
+                                  {(up ? n.hi_x1 : n.hi_x0)[j], (up ? n.hi_y1 : n.hi_y0)[j], (up ? n.hi_z1 : n.hi_z0)[j]},
+                                  (up ? n.child1 : n.child0)[j]});
+        }
+    }
+    return out;
 }
 
 // Walks the tree from the root and checks every rule widen() promises; reports through gtest.
-WideShape check_wide(const WideBvh& wide, const Scene& scene)
+template <class Wide>
+WideShape check_wide(const Wide& wide, const Scene& scene)
 {
+    const SlotNodes nodes = slots_of(wide);
     WideShape shape;
     std::vector<int> prim_seen(scene.triangle_count(), 0);
-    std::vector<int> node_seen(wide.nodes.size(), 0);
+    std::vector<int> node_seen(nodes.size(), 0);
     int failures = 0;
     auto fail = [&](const std::string& what) {
         if (++failures <= 10) ADD_FAILURE() << what;
@@ -40,26 +77,25 @@ WideShape check_wide(const WideBvh& wide, const Scene& scene)
     std::function<void(std::uint32_t, std::size_t)> visit = [&](std::uint32_t index, std::size_t depth) {
         ++node_seen[index];
         shape.depth = std::max(shape.depth, depth);
-        const dev::GcBvh4Node& n = wide.nodes[index];
+        const std::vector<Slot>& n = nodes[index];
         bool empty_seen = false;
-        for (int k = 0; k < 4; ++k) {
-            const std::uint32_t ref = n.child[k];
+        for (std::size_t k = 0; k < n.size(); ++k) {
+            const Slot& slot = n[k];
+            const std::uint32_t ref = slot.ref;
             if (ref == GC_INVALID) {
                 empty_seen = true;
-                if (!(n.lo_x[k] > n.hi_x[k])) fail("empty slot with non-empty bounds in node " + std::to_string(index));
+                if (!(slot.lo[0] > slot.hi[0])) fail("empty slot with non-empty bounds in node " + std::to_string(index));
                 continue;
             }
             if (empty_seen) fail("node " + std::to_string(index) + " has a gap before slot " + std::to_string(k));
             if ((ref & GC_BVH4_LEAF) == 0u) {
-                if (ref <= index || ref >= wide.nodes.size()) {
+                if (ref <= index || ref >= nodes.size()) {
                     fail("node " + std::to_string(index) + " child " + std::to_string(ref) + " out of order");
                     continue;
                 }
-                const dev::GcBvh4Node& c = wide.nodes[ref];
-                for (int j = 0; j < 4; ++j) {
-                    if (c.child[j] == GC_INVALID) continue;
-                    if (!slot_contains(n, k, c.lo_x[j], c.lo_y[j], c.lo_z[j]) ||
-                        !slot_contains(n, k, c.hi_x[j], c.hi_y[j], c.hi_z[j]))
+                for (const Slot& c : nodes[ref]) {
+                    if (c.ref == GC_INVALID) continue;
+                    if (!slot.contains(c.lo[0], c.lo[1], c.lo[2]) || !slot.contains(c.hi[0], c.hi[1], c.hi[2]))
                         fail("node " + std::to_string(ref) + " is not inside its parent's slot");
                 }
                 visit(ref, depth + 1);
@@ -94,7 +130,7 @@ WideShape check_wide(const WideBvh& wide, const Scene& scene)
                     for (int c = 0; c < 3; ++c) {
                         const Point3 p = scene.vertex(prim, c);
                         if (xs[c] != p.x || ys[c] != p.y || zs[c] != p.z) fail("lane vertex differs from the scene");
-                        if (!slot_contains(n, k, xs[c], ys[c], zs[c])) fail("triangle outside its leaf's slot");
+                        if (!slot.contains(xs[c], ys[c], zs[c])) fail("triangle outside its leaf's slot");
                     }
                 }
             }
@@ -115,20 +151,23 @@ TEST(WideBvh, CoversEveryTriangleOnceForEveryLeafSize)
     for (int leaf : {1, 2, 4, 8, 16}) {
         // Expensive node visits make the builder use the long leaves, so multi-block leaves occur.
         const FlatBvh bvh = build_bvh(scene, {.max_leaf_size = leaf, .traversal_cost = leaf > 4 ? 8.0f : 1.0f});
-        const WideBvh wide = widen(bvh);
-        const WideShape shape = check_wide(wide, scene);
         const BvhStats s = bvh_stats(bvh);
-        std::printf("[ wide, leaf %2d ] BVH2 %zu nodes depth %zu -> BVH4 %zu nodes depth %zu, %zu leaves, "
-                    "%zu blocks (%.0f%% of lanes used, up to %u per leaf), %.1f bytes per triangle\n",
-                    leaf, s.nodes, s.max_depth, wide.nodes.size(), shape.depth, shape.leaves, wide.blocks.size(),
-                    100.0 * double(shape.used_lanes) / double(4 * wide.blocks.size()), shape.max_blocks,
-                    double(wide_bvh_bytes(wide)) / double(scene.triangle_count()));
-        EXPECT_EQ(shape.used_lanes, scene.triangle_count());
-        EXPECT_LE(shape.depth, s.max_depth) << "the BVH4 must not be deeper than its BVH2 (stack bound)";
-        EXPECT_LT(wide.nodes.size(), s.nodes / 2) << "collapsing should remove most inner nodes";
-        if (leaf == 16) {
-            EXPECT_GT(shape.max_blocks, 2u) << "the long leaves must be exercised";
-        }
+        auto check = [&](const auto& wide, const char* name, std::size_t max_nodes) {
+            const WideShape shape = check_wide(wide, scene);
+            std::printf("[ wide, leaf %2d ] BVH2 %zu nodes depth %zu -> %s %zu nodes depth %zu, %zu leaves, "
+                        "%zu blocks (%.0f%% of lanes used, up to %u per leaf), %.1f bytes per triangle\n",
+                        leaf, s.nodes, s.max_depth, name, wide.nodes.size(), shape.depth, shape.leaves,
+                        wide.blocks.size(), 100.0 * double(shape.used_lanes) / double(4 * wide.blocks.size()),
+                        shape.max_blocks, double(wide_bvh_bytes(wide)) / double(scene.triangle_count()));
+            EXPECT_EQ(shape.used_lanes, scene.triangle_count()) << name;
+            EXPECT_LE(shape.depth, s.max_depth) << name << " must not be deeper than its BVH2 (stack bound)";
+            EXPECT_LT(wide.nodes.size(), max_nodes) << "collapsing should remove most inner nodes";
+            if (leaf == 16) {
+                EXPECT_GT(shape.max_blocks, 2u) << "the long leaves must be exercised";
+            }
+        };
+        check(widen(bvh), "BVH4", s.nodes / 2);
+        check(widen8(bvh), "BVH8", s.nodes / 4);
         expect_agreement(compare_with_brute_force(bvh, scene, mixed_rays(scene, 3000, 22)), "wide vs brute force");
     }
 }
@@ -149,6 +188,7 @@ TEST(WideBvh, EmptyAndTinyScenes)
     add_triangle(one, {0, 0, 2}, {1, 0, 2}, {0, 1, 2});
     const WideBvh wide = widen(build_bvh(one));
     check_wide(wide, one);
+    check_wide(widen8(build_bvh(one)), one);
     const dev::GcHit h = trace_closest(wide, {Point3(0.25f, 0.5f, 0), Vec3(0, 0, 1)});
     EXPECT_EQ(h.prim, 0u);
     EXPECT_EQ(h.t, 2.0f);

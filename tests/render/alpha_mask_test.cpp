@@ -234,7 +234,7 @@ void expect_kernels_skip_cut_out(const cl::Context& ctx, BvhLayout layout)
 
 TEST_F(AlphaMaskDevice, ExtendAndShadowKernelsSkipCutOut)
 {
-    for (const BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide}) expect_kernels_skip_cut_out(*context, layout);
+    for (const BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide, BvhLayout::Wide8}) expect_kernels_skip_cut_out(*context, layout);
 }
 
 // Floor (y = 0, Lambert 0.5) lit by a small downward-facing emitter at y = 1; a MASK quad at

@@ -111,7 +111,7 @@ void expect_traversal_matches(const Scene& scene, const std::string& name, std::
     std::vector<dev::GcHit> brute_force;
     for (const Ray& r : rays) brute_force.push_back(trace_brute_force(scene, r));
     for (const cl::DeviceInfo& device : devices) {
-        for (const BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide}) {
+        for (const BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide, BvhLayout::Wide8}) {
             const TraversalFigures f = compare_traversal(device, layout, scene, rays, brute_force);
             std::printf("[traversal] %s on %s, %s: %zu rays, %zu hits, prim mismatches %zu, t mismatches %zu "
                         "(max rel t error %.3g), any-hit mismatches %zu\n",

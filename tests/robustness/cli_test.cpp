@@ -139,7 +139,7 @@ TEST(Cli, BadPathKernelVariableIsAUsageError)
 
 TEST(Cli, BadBvhWidthVariableIsAUsageError)
 {
-    expect_env_usage_error("GEOCOLD_BVH_WIDTH", "8", "GEOCOLD_BVH_WIDTH must be 2 or 4, not '8'");
+    expect_env_usage_error("GEOCOLD_BVH_WIDTH", "3", "GEOCOLD_BVH_WIDTH must be 2, 4 or 8, not '3'");
 }
 
 // A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the

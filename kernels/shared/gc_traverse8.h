@@ -1,0 +1,211 @@
+/*
+ * gc_traverse8.h — gc_trace_impl over the BVH8 layout (GcBvh8Node + GcTriangle4 leaves),
+ * compiled when the program is built with -D GC_BVH_WIDE -D GC_BVH_WIDE8. The leaves and the
+ * triangle test are gc_traverse4.h's; the node test covers eight boxes with one float8
+ * expression in OpenCL (one AVX instruction per step), and two gc_box4_entry calls on the
+ * host, which perform the same operations per lane and so give the same bits.
+ *
+ * Child order: the children hit are pushed unconditionally-written, conditionally-advanced
+ * (no branch per child), then the few pushed (typically 1-3) are insertion-sorted so that
+ * the nearest is on top; it is popped at once. Same results as every other layout (the tie
+ * rule of gc_traverse.h).
+ */
+#ifndef GC_TRAVERSE8_H
+#define GC_TRAVERSE8_H
+
+#define GC_TRAVERSE4_HELPERS_ONLY
+#include "gc_traverse4.h"
+#undef GC_TRAVERSE4_HELPERS_ONLY
+
+/* Each inner node on the way down defers at most seven children; eight slots of slack let
+ * the branch-free push write before it checks. */
+#define GC_BVH8_STACK_SIZE (7u * GC_BVH_MAX_DEPTH + 8u)
+
+GC_NAMESPACE_BEGIN
+
+#if defined(GC_OPENCL)
+#define gc_join8(a, b) ((float8)((a), (b)))
+
+/* gc_box4_entry for eight boxes: per lane the same operations. */
+GC_FUNC float8 gc_box8_entry(GcRayPre r, float tmax, GcBvh8Node n)
+{
+    bool px = r.inv_dir.x >= 0.0f;
+    bool py = r.inv_dir.y >= 0.0f;
+    bool pz = r.inv_dir.z >= 0.0f;
+    float8 lo_x = gc_join8(n.lo_x0, n.lo_x1);
+    float8 hi_x = gc_join8(n.hi_x0, n.hi_x1);
+    float8 lo_y = gc_join8(n.lo_y0, n.lo_y1);
+    float8 hi_y = gc_join8(n.hi_y0, n.hi_y1);
+    float8 lo_z = gc_join8(n.lo_z0, n.lo_z1);
+    float8 hi_z = gc_join8(n.hi_z0, n.hi_z1);
+    float8 nx = (px ? lo_x : hi_x) - r.org.x;
+    float8 fx = (px ? hi_x : lo_x) - r.org.x;
+    float8 ny = (py ? lo_y : hi_y) - r.org.y;
+    float8 fy = (py ? hi_y : lo_y) - r.org.y;
+    float8 nz = (pz ? lo_z : hi_z) - r.org.z;
+    float8 fz = (pz ? hi_z : lo_z) - r.org.z;
+    float8 tnear = (float8)(r.org.w);
+    float8 t;
+    t = nx * r.inv_dir.x;
+    tnear = select(tnear, t, t > tnear);
+    t = ny * r.inv_dir.y;
+    tnear = select(tnear, t, t > tnear);
+    t = nz * r.inv_dir.z;
+    tnear = select(tnear, t, t > tnear);
+    float8 tfar = (float8)(tmax);
+    t = fx * r.inv_dir.x;
+    tfar = select(tfar, t, t < tfar);
+    t = fy * r.inv_dir.y;
+    tfar = select(tfar, t, t < tfar);
+    t = fz * r.inv_dir.z;
+    tfar = select(tfar, t, t < tfar);
+    float8 entry = tnear - r.shear.w;
+    return select((float8)(GC_AABB_MISS), entry, entry <= tfar * GC_BOX_TFAR_SCALE);
+}
+#define GC_LANE8(v, k) (v).s##k
+#else
+/* Host: the entries of both halves, lanes 0-3 and 4-7. */
+struct GcEntries8 {
+    float4 a;
+    float4 b;
+};
+
+inline GcBvh4Node gc_bvh8_half(const GcBvh8Node& n, bool upper)
+{
+    GcBvh4Node h;
+    h.lo_x = upper ? n.lo_x1 : n.lo_x0;
+    h.hi_x = upper ? n.hi_x1 : n.hi_x0;
+    h.lo_y = upper ? n.lo_y1 : n.lo_y0;
+    h.hi_y = upper ? n.hi_y1 : n.hi_y0;
+    h.lo_z = upper ? n.lo_z1 : n.lo_z0;
+    h.hi_z = upper ? n.hi_z1 : n.hi_z0;
+    h.child = upper ? n.child1 : n.child0;
+    h.pad = uint4(0u);
+    return h;
+}
+
+inline GcEntries8 gc_box8_entry(GcRayPre r, float tmax, const GcBvh8Node& n)
+{
+    return {gc_box4_entry(r, tmax, gc_bvh8_half(n, false)), gc_box4_entry(r, tmax, gc_bvh8_half(n, true))};
+}
+#define GC_LANE8(v, k) ((k) < 4 ? (v).a[(k) & 3] : (v).b[(k) & 3])
+#endif
+
+/* The root's bounds (the union of its children's), for gc_ray_with_margin. */
+GC_FUNC float gc_hmin4(float4 v) { return fmin(fmin(v.x, v.y), fmin(v.z, v.w)); }
+GC_FUNC float gc_hmax4(float4 v) { return fmax(fmax(v.x, v.y), fmax(v.z, v.w)); }
+
+GC_FUNC float3 gc_bvh8_root_lo(GcBvh8Node n)
+{
+    return make_float3(gc_hmin4(fmin(n.lo_x0, n.lo_x1)), gc_hmin4(fmin(n.lo_y0, n.lo_y1)),
+                       gc_hmin4(fmin(n.lo_z0, n.lo_z1)));
+}
+
+GC_FUNC float3 gc_bvh8_root_hi(GcBvh8Node n)
+{
+    return make_float3(gc_hmax4(fmax(n.hi_x0, n.hi_x1)), gc_hmax4(fmax(n.hi_y0, n.hi_y1)),
+                       gc_hmax4(fmax(n.hi_z0, n.hi_z1)));
+}
+
+/* Writes child k's (entry, ref) at the top of the stack and keeps it only if it was hit. */
+#define GC_BVH8_PUSH(k, c)                   \
+    {                                        \
+        float e_ = GC_LANE8(e, k);           \
+        stack_ref[sp] = (c);                 \
+        stack_entry[sp] = e_;                \
+        sp += e_ < GC_AABB_MISS ? 1u : 0u;   \
+    }
+
+#if defined(GC_OPENCL)
+static __attribute__((noinline)) GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
+#else
+GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
+#endif
+{
+    GcHit best = gc_no_hit();
+    if (!gc_ray_is_valid(ray)) return best;
+
+    GcRayPre r = gc_ray_precompute(ray);
+    float t_best = gc_ray_tmax(ray);
+
+    uint stack_ref[GC_BVH8_STACK_SIZE];
+    float stack_entry[GC_BVH8_STACK_SIZE];
+    uint sp = 0u;
+
+    GcBvh8Node root = GC_BVH_NODE(0u);
+    r = gc_ray_with_margin(r, gc_bvh8_root_lo(root), gc_bvh8_root_hi(root));
+
+    uint ref = 0u;
+    for (;;) {
+        if ((ref & GC_BVH4_LEAF) == 0u) {
+            GcBvh8Node n = GC_BVH_NODE(ref);
+#if defined(GC_OPENCL)
+            float8 e = gc_box8_entry(r, t_best, n);
+#else
+            GcEntries8 e = gc_box8_entry(r, t_best, n);
+#endif
+            uint base = sp;
+            if (sp + 8u <= GC_BVH8_STACK_SIZE) {
+                GC_BVH8_PUSH(0, n.child0.x)
+                GC_BVH8_PUSH(1, n.child0.y)
+                GC_BVH8_PUSH(2, n.child0.z)
+                GC_BVH8_PUSH(3, n.child0.w)
+                GC_BVH8_PUSH(4, n.child1.x)
+                GC_BVH8_PUSH(5, n.child1.y)
+                GC_BVH8_PUSH(6, n.child1.z)
+                GC_BVH8_PUSH(7, n.child1.w)
+            }
+            if (sp > base + 1u) {
+                /* Insertion sort of the pushed children, farthest deepest, nearest on top. */
+                for (uint i = base + 1u; i < sp; ++i) {
+                    float ke = stack_entry[i];
+                    uint kr = stack_ref[i];
+                    uint j = i;
+                    while (j > base && stack_entry[j - 1u] < ke) {
+                        stack_entry[j] = stack_entry[j - 1u];
+                        stack_ref[j] = stack_ref[j - 1u];
+                        --j;
+                    }
+                    stack_entry[j] = ke;
+                    stack_ref[j] = kr;
+                }
+            }
+            if (sp > base) {
+                --sp;
+                ref = stack_ref[sp];
+                continue;
+            }
+        } else {
+            uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
+            uint end = first + ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
+            for (uint b = first; b < end; ++b) {
+                GcTriangle4 q = GC_BVH_TRI(b);
+                GcTriangleHits4 h = gc_intersect_triangle4(r, q, t_best);
+                if (!gc_any4(h.hit)) continue;
+                GC_BVH4_ACCEPT(x)
+                GC_BVH4_ACCEPT(y)
+                GC_BVH4_ACCEPT(z)
+                GC_BVH4_ACCEPT(w)
+            }
+        }
+        /* Pop the nearest deferred child that can still beat t_best. */
+        bool found = false;
+        while (sp > 0u && !found) {
+            --sp;
+            found = gc_aabb_entry_within(stack_entry[sp], t_best);
+        }
+        if (!found) break;
+        ref = stack_ref[sp];
+    }
+    return best;
+}
+
+#undef GC_BVH8_PUSH
+#undef GC_BVH4_SORT2
+#undef GC_BVH4_PUSH
+#undef GC_BVH4_SOLID
+#undef GC_BVH4_ACCEPT
+
+GC_NAMESPACE_END
+
+#endif /* GC_TRAVERSE8_H */
