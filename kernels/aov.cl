@@ -9,24 +9,12 @@
 #include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as the path kernels */
 #include "gc_traverse.h"
 
-__kernel void aov_render(const GcRenderParams params,
-                         __global const GcTraversalNode* nodes,
-                         __global const GcTraversalTriangle* tris,
-                         __global const GcTriangleAttribs* attribs,
-                         __global const GcMaterial* materials,
-                         __global const GcTexture* textures,
-                         __global const uint* texels,
-                         __global const GcEmitter* emitters,
-                         __global const GcPointLight* point_lights,
-                         __global const float4* env_pixels,
-                         __global const float* env_marginal,
-                         __global const float* env_conditional,
-                         __global float4* film)
+__kernel void aov_render(const GcRenderParams params, GC_SCENE_PARAMS, __global float4* film)
 {
     const uint i = get_global_id(0);
     if (i >= params.pixel_count) return;
     const uint pixel = params.pixel_offset + i;
     const GcRay ray = gc_aov_camera_ray(params, pixel);
-    const GcHit hit = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, ray);
+    const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
     film[pixel] += (float4)(gc_aov_value(GC_SHADE_ARGS, params, ray, hit), 1.0f);
 }

@@ -3,12 +3,7 @@
 #include "gc_traverse.h"
 
 __kernel void extend(const GcRenderParams params,
-                     __global const GcTraversalNode* nodes,
-                     __global const GcTraversalTriangle* tris,
-                     __global const GcTriangleAttribs* attribs,
-                     __global const GcMaterial* materials,
-                     __global const GcTexture* textures,
-                     __global const uint* texels,
+                     GC_BVH_PARAMS,
                      __global const GcRay* rays,
                      __global GcHit* hits,
                      __global const uint* ray_queue,
@@ -18,5 +13,5 @@ __kernel void extend(const GcRenderParams params,
     const uint q = get_global_id(0);
     if (q >= counters[queue_counter] || q >= gc_pass_paths(params)) return;
     const uint slot = ray_queue[q];
-    hits[slot] = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, rays[slot]);
+    hits[slot] = gc_trace_closest(GC_BVH_ARGS, rays[slot]);
 }

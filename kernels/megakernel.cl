@@ -18,17 +18,7 @@
 #include "gc_rng.h"
 
 __kernel void path_megakernel(const GcRenderParams params,
-                              __global const GcTraversalNode* nodes,
-                              __global const GcTraversalTriangle* tris,
-                              __global const GcTriangleAttribs* attribs,
-                              __global const GcMaterial* materials,
-                              __global const GcTexture* textures,
-                              __global const uint* texels,
-                              __global const GcEmitter* emitters,
-                              __global const GcPointLight* point_lights,
-                              __global const float4* env_pixels,
-                              __global const float* env_marginal,
-                              __global const float* env_conditional,
+                              GC_SCENE_PARAMS,
                               __global float4* film,
                               __global float4* film_squares)
 {
@@ -47,10 +37,10 @@ __kernel void path_megakernel(const GcRenderParams params,
 
         /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
         for (;;) {
-            const GcHit hit = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, ray);
+            const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
             const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit);
             path = res.path;
-            if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(nodes, tris, GC_ALPHA_ARGS, res.shadow.ray))
+            if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
                 path.radiance += res.shadow.contribution;
             if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
             ray = res.next;

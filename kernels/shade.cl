@@ -6,15 +6,7 @@
 #include "gc_path_vertex.h"
 
 __kernel void shade(const GcRenderParams params,
-                    __global const GcTriangleAttribs* attribs,
-                    __global const GcMaterial* materials,
-                    __global const GcTexture* textures,
-                    __global const uint* texels,
-                    __global const GcEmitter* emitters,
-                    __global const GcPointLight* point_lights,
-                    __global const float4* env_pixels,
-                    __global const float* env_marginal,
-                    __global const float* env_conditional,
+                    GC_SHADE_PARAMS,
                     __global GcRay* rays,
                     __global const GcHit* hits,
                     __global GcPathState* paths,

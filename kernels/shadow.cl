@@ -6,12 +6,7 @@
 #include "gc_traverse.h"
 
 __kernel void shadow(const GcRenderParams params,
-                     __global const GcTraversalNode* nodes,
-                     __global const GcTraversalTriangle* tris,
-                     __global const GcTriangleAttribs* attribs,
-                     __global const GcMaterial* materials,
-                     __global const GcTexture* textures,
-                     __global const uint* texels,
+                     GC_BVH_PARAMS,
                      __global const GcShadowRay* shadow_rays,
                      __global GcPathState* paths,
                      __global const uint* counters)
@@ -19,5 +14,5 @@ __kernel void shadow(const GcRenderParams params,
     const uint q = get_global_id(0);
     if (q >= counters[GC_COUNTER_SHADOW] || q >= gc_pass_paths(params)) return;
     const GcShadowRay s = shadow_rays[q];
-    if (!gc_trace_any(nodes, tris, GC_ALPHA_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
+    if (!gc_trace_any(GC_BVH_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
 }

@@ -65,13 +65,12 @@ static float gc_whitted_priority(float3 w) { return fmax(w.x, fmax(w.y, w.z)); }
 
 /* True when nothing blocks the segment from `origin` to `target` (both already offset off
  * their surfaces). */
-static bool gc_whitted_unoccluded(__global const GcTraversalNode* nodes, __global const GcTraversalTriangle* tris,
-                                  GC_ALPHA_PARAMS, float3 origin, float3 target)
+static bool gc_whitted_unoccluded(GC_BVH_PARAMS, float3 origin, float3 target)
 {
     const float3 d = target - origin;
     const float len = length(d);
     if (!(len > 0.0f)) return true;
-    return !gc_trace_any(nodes, tris, GC_ALPHA_ARGS, gc_make_ray(origin, d / len, 0.0f, len));
+    return !gc_trace_any(GC_BVH_ARGS, gc_make_ray(origin, d / len, 0.0f, len));
 }
 
 /* Pushes (ray, weight, depth); on a full stack replaces the lightest entry if the new one is
@@ -96,13 +95,8 @@ static void gc_whitted_push(GcRay* stack_ray, float3* stack_weight, uint* stack_
 }
 
 __kernel void whitted_render(const GcRenderParams params,
-                             __global const GcTraversalNode* nodes,
-                             __global const GcTraversalTriangle* tris,
-                             __global const GcTriangleAttribs* attribs,
-                             __global const GcMaterial* materials,
-                             __global const GcTexture* textures,
-                             __global const uint* texels,
-                             __global const GcEmitter* emitters,
+                             GC_BVH_PARAMS,
+                             GC_EMITTERS_PARAM,
                              __global const GcPointLight* point_lights,
                              __global float4* film)
 {
@@ -130,7 +124,7 @@ __kernel void whitted_render(const GcRenderParams params,
         const float3 weight = stack_weight[sp];
         const uint depth = stack_depth[sp];
 
-        const GcHit hit = gc_trace_closest(nodes, tris, GC_ALPHA_ARGS, ray);
+        const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
         if (hit.prim == GC_INVALID) {
             L += weight * env;
             continue;
@@ -156,7 +150,7 @@ __kernel void whitted_render(const GcRenderParams params,
                 const float3 brdf_cos = gc_whitted_brdf_cos(m, albedo, s.ns, s.ng, wo, wi);
                 const float3 c = gc_whitted_point_light(brdf_cos, light.intensity.xyz, dist2);
                 if (gc_whitted_nonzero(c) &&
-                    gc_whitted_unoccluded(nodes, tris, GC_ALPHA_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
+                    gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
                                           light.position.xyz))
                     direct += c;
             }
@@ -179,7 +173,7 @@ __kernel void whitted_render(const GcRenderParams params,
                         const float3 c = gc_whitted_area_light(brdf_cos, lm.emission.xyz, cos_light, dist2,
                                                                e.pmf / e.area);
                         if (gc_whitted_nonzero(c) &&
-                            gc_whitted_unoccluded(nodes, tris, GC_ALPHA_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
+                            gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
                                                   gc_offset_ray_origin(p_light, gc_whitted_side(la.ng.xyz, -wi))))
                             direct += c;
                     }

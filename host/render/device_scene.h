@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <tuple>
 
 #include "gc_types.h"
 #include "host/bvh/bvh.h"
@@ -34,6 +35,27 @@ struct DeviceScene {
 
     // Bytes of device memory the scene occupies (reported by --verbose and the benchmark).
     std::uint64_t bytes() const;
+
+    // Kernel argument groups for cl::Kernel::set_args, each the twin of one parameter macro of
+    // kernels/shared and in its order, so a kernel's scene buffers are listed once per side.
+    // The tuples refer to this scene's buffers: pass them to set_args, do not keep them.
+    auto alpha_args() const { return std::tie(attribs, materials, textures, texels); }  // GC_ALPHA_PARAMS
+    auto lights_args() const  // GC_LIGHTS_PARAMS
+    {
+        return std::tie(point_lights, env_pixels, env_marginal, env_conditional);
+    }
+    auto bvh_args() const  // GC_BVH_PARAMS as gc_alpha.h widens it (extend, shadow, whitted)
+    {
+        return std::tuple_cat(std::make_tuple(bvh.nodes(), bvh.triangles()), alpha_args());
+    }
+    auto shade_args() const  // GC_SHADE_PARAMS (shade)
+    {
+        return std::tuple_cat(alpha_args(), std::tie(emitters), lights_args());
+    }
+    auto scene_args() const  // GC_SCENE_PARAMS (path_megakernel, aov_render)
+    {
+        return std::tuple_cat(bvh_args(), std::tie(emitters), lights_args());
+    }
 
     static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
                               const EnvironmentMap& environment = {});

@@ -146,26 +146,21 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
 
 void Renderer::run_aov_batch()
 {
-    m_aov.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs, m_scene.materials,
-                   m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
-                   m_scene.env_conditional, m_film);
+    m_aov.set_args(m_params, m_scene.scene_args(), m_film);
     m_aov.launch(m_context, m_params.pixel_count, 0, "first-hit AOVs");
 }
 
 // [whitted hook] One work-item per pixel of the batch, like run_aov_batch.
 void Renderer::run_whitted_batch()
 {
-    m_whitted.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs, m_scene.materials,
-                       m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights, m_film);
+    m_whitted.set_args(m_params, m_scene.bvh_args(), m_scene.emitters, m_scene.point_lights, m_film);
     m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
 }
 
 // One work-item per pixel of the batch runs its samples of the pass from camera to end.
 void Renderer::run_megakernel_batch()
 {
-    m_path_megakernel.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs,
-                               m_scene.materials, m_scene.textures, m_scene.texels, m_scene.emitters, m_scene.point_lights,
-                               m_scene.env_pixels, m_scene.env_marginal, m_scene.env_conditional, m_film, m_film_squares);
+    m_path_megakernel.set_args(m_params, m_scene.scene_args(), m_film, m_film_squares);
     m_path_megakernel.launch(m_context, m_params.pixel_count, megakernel_local_size(m_context),
                              "paths (megakernel)");
 }
@@ -188,8 +183,7 @@ void Renderer::run_path_batch()
     bool sync_counts = !m_context.device().is_gpu;
     if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) sync_counts = env[0] != '0';
     std::uint32_t live = n;
-    m_shadow.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs, m_scene.materials,
-                      m_scene.textures, m_scene.texels, m_shadow_rays, m_paths, m_counters);
+    m_shadow.set_args(m_params, m_scene.bvh_args(), m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;
     for (std::uint32_t depth = 0; depth < m_params.max_depth && live > 0; ++depth) {
         const cl::Buffer<std::uint32_t>& queue_in = a_is_input ? m_queue_a : m_queue_b;
@@ -199,13 +193,10 @@ void Renderer::run_path_batch()
         zero_counters(m_context, m_counters, counter_out, 1);
         zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
 
-        m_extend.set_args(m_params, m_scene.bvh.nodes(), m_scene.bvh.triangles(), m_scene.attribs,
-                          m_scene.materials, m_scene.textures, m_scene.texels, m_rays, m_hits, queue_in, m_counters, counter_in);
+        m_extend.set_args(m_params, m_scene.bvh_args(), m_rays, m_hits, queue_in, m_counters, counter_in);
         m_extend.launch(m_context, live, 0, "closest-hit rays");
-        m_shade.set_args(m_params, m_scene.attribs, m_scene.materials, m_scene.textures, m_scene.texels,
-                         m_scene.emitters, m_scene.point_lights, m_scene.env_pixels, m_scene.env_marginal,
-                         m_scene.env_conditional, m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays, m_counters,
-                         counter_in, counter_out);
+        m_shade.set_args(m_params, m_scene.shade_args(), m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays,
+                         m_counters, counter_in, counter_out);
         m_shade.launch(m_context, live, 0, "shading");
         std::uint32_t shadows = n;
         if (sync_counts) {

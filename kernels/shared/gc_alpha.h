@@ -16,6 +16,9 @@
  *     GC_ALPHA_PARAMS  attribs, materials, textures pointers, then GC_TEXELS_PARAM
  *     GC_ALPHA_ARGS    attribs, materials, textures, GC_TEXELS_ARG
  * GLSL defines them (dummy uint parameter, global SSBOs) in kernels/vk/scene_bindings.glsl.
+ * The GC_BVH_PARAMS widened here (nodes, triangles, then GC_ALPHA_PARAMS) is also the leading
+ * scene group of the tracing kernels' signatures (extend.cl, shadow.cl, whitted.cl), so the
+ * list is written once; the host sets it with DeviceScene::bvh_args(), in this order.
  */
 #ifndef GC_ALPHA_H
 #define GC_ALPHA_H

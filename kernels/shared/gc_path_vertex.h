@@ -23,6 +23,7 @@
  *     GC_SHADE_ARGS    attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG
  *     GC_ATTRIB(i), GC_MATERIAL(i), GC_TEXTURE(i)
  *     GC_SHADE_UNUSED()  a statement marking all of them used (empty in GLSL)
+ *     GC_SCENE_PARAMS  the BVH (gc_alpha.h's GC_BVH_PARAMS), then the rest of GC_SHADE_PARAMS
  * GLSL declares SSBOs and defines all of them (and those of gc_texture.h / gc_path.h) first;
  * see kernels/vk/scene_bindings.glsl.
  */
@@ -49,6 +50,13 @@
 /* For functions that read only some of the buffers (C++ warns about unused parameters). */
 #define GC_SHADE_UNUSED() \
     ((void)attribs, (void)materials, (void)textures, (void)GC_TEXELS_ARG, (void)GC_EMITTERS_ARG, GC_LIGHTS_UNUSED())
+/* Every scene buffer, for kernels that both trace and shade (megakernel.cl, aov.cl). The BVH
+ * parameters that gc_alpha.h widens already end with the four buffers GC_SHADE_PARAMS starts
+ * with, so the group is those plus the emitters and lights, written once here instead of in
+ * each kernel; the body passes GC_BVH_ARGS to the traversal and GC_SHADE_ARGS to the shading.
+ * Include gc_alpha.h first (otherwise attribs..texels are missing and the kernel fails to
+ * compile). The host's twin is DeviceScene::scene_args(), which sets them in this order. */
+#define GC_SCENE_PARAMS GC_BVH_PARAMS, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
 #endif
 #ifndef GC_SHADE_UNUSED
 #define GC_SHADE_UNUSED()

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cl_test_util.h"
@@ -41,6 +42,38 @@ TEST_F(KernelTest, ArgCountMismatchIsAClearError)
     }
     EXPECT_THROW(kernel.set_args(data, 4u, 1.0f, 2.0f), DeviceError);
     EXPECT_NO_THROW(kernel.set_args(data, 4u, 1.0f));
+}
+
+// A std::tuple passed to set_args (DeviceScene::bvh_args() and the like) stands for its
+// elements, in order, nested groups included: the same launch with the arguments listed one
+// by one must write the same bits, and the arity check counts the elements. Two kernel objects,
+// so that the grouped launch cannot run on arguments left from the listed one.
+TEST_F(KernelTest, TupleArgumentIsAGroupSetInOrder)
+{
+    Kernel listed = program->kernel("compute");
+    Kernel kernel = program->kernel("compute");
+    const cl_uint n = 4;
+    const float k = 2.0f;
+    std::vector<float> a(n, 0.0f), b(n, 0.0f);
+    auto flat = Buffer<float>::create(*context, n, CL_MEM_READ_WRITE, "flat");
+    auto grouped = Buffer<float>::create(*context, n, CL_MEM_READ_WRITE, "grouped");
+    flat.write(a);
+    grouped.write(b);
+    listed.set_args(flat, n, k);
+    listed.launch(*context, n);
+    kernel.set_args(std::tie(grouped), std::make_tuple(std::make_tuple(n), k));
+    kernel.launch(*context, n);
+    flat.read(a);
+    grouped.read(b);
+    for (cl_uint i = 0; i < n; ++i) std::printf("data[%u]: listed %.9g, grouped %.9g\n", i, a[i], b[i]);
+    EXPECT_EQ(a, b);
+    try {
+        kernel.set_args(std::tie(grouped), std::make_tuple(n));
+        FAIL() << "no error for a group of 1 where 2 arguments remain";
+    } catch (const DeviceError& e) {
+        std::printf("%s\n", e.what());
+        EXPECT_STREQ(e.what(), "kernel 'compute' takes 3 arguments but set_args was given 2");
+    }
 }
 
 TEST_F(KernelTest, WrongArgSizeNamesTheArgument)
