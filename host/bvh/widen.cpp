@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -192,7 +193,7 @@ private:
 };
 
 template <class Node, std::uint32_t Width>
-WideBvhOf<Node> widen_to(const FlatBvh& bvh)
+WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
 {
     WideBvhOf<Node> out;
     out.nodes.emplace_back();
@@ -213,6 +214,36 @@ WideBvhOf<Node> widen_to(const FlatBvh& bvh)
     }
     out.nodes.clear();
     widener.inner(0);
+    return out;
+}
+
+// The largest |coordinate| of the BVH2 root's bounds (0 for the empty scene), whose bits the
+// wide root carries for the traversal's margin (gc_ray_with_extent_margin).
+float scene_extent(const FlatBvh& bvh)
+{
+    if (bvh.nodes.empty() || bvh.scene_triangle_count() == 0) return 0.0f;
+    const dev::GcBvhNode& root = bvh.nodes[0];
+    float extent = 0.0f;
+    for (const float c : {root.lo.x, root.lo.y, root.lo.z, root.hi.x, root.hi.y, root.hi.z})
+        extent = std::max(extent, std::fabs(c));
+    return extent;
+}
+
+void set_extent(dev::GcBvh4Node& root, float extent)
+{
+    root.pad.x = std::bit_cast<std::uint32_t>(extent);
+}
+
+void set_extent(dev::GcBvh8Node& root, float extent)
+{
+    root.pad0.x = std::bit_cast<std::uint32_t>(extent);
+}
+
+template <class Node, std::uint32_t Width>
+WideBvhOf<Node> widen_to(const FlatBvh& bvh)
+{
+    WideBvhOf<Node> out = widen_tree<Node, Width>(bvh);
+    set_extent(out.nodes[0], scene_extent(bvh));
     return out;
 }
 

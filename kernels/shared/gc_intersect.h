@@ -224,6 +224,17 @@ GC_FUNC GcRayPre gc_ray_with_margin(GcRayPre r, float3 root_lo, float3 root_hi)
     return r;
 }
 
+/* The same margin from the scene's extent: `extent` >= every |coordinate| of the root box, so
+ * |corner - origin| <= extent + max |origin coordinate| bounds what gc_box_margin takes the
+ * maximum of (a little looser, still conservative). The wide layouts store the extent in the
+ * root node, which saves each ray the reduction over the root's children. */
+GC_FUNC GcRayPre gc_ray_with_extent_margin(GcRayPre r, float extent)
+{
+    float3 o = fabs(GC_XYZ(r.org));
+    r.shear.w = GC_BOX_ABS_EPS * ((extent + fmax(o.x, fmax(o.y, o.z))) * r.inv_dir.w);
+    return r;
+}
+
 /* The slab test with a precomputed ray (see gc_ray_with_margin), clipped to [ray t_min, tmax]. */
 GC_FUNC float gc_intersect_aabb_pre(GcRayPre r, float tmax, float3 lo, float3 hi)
 {

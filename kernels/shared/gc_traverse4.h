@@ -112,21 +112,6 @@ GC_FUNC float4 gc_box4_entry(GcRayPre r, float tmax, GcBvh4Node n)
     return gc_select4(gc_le4(entry, tfar * GC_BOX_TFAR_SCALE), entry, gc_splat4(GC_AABB_MISS));
 }
 
-/* The root's bounds (the union of its children's), for gc_ray_with_margin. */
-GC_FUNC float3 gc_bvh4_root_lo(GcBvh4Node n)
-{
-    return make_float3(fmin(fmin(n.lo_x.x, n.lo_x.y), fmin(n.lo_x.z, n.lo_x.w)),
-                       fmin(fmin(n.lo_y.x, n.lo_y.y), fmin(n.lo_y.z, n.lo_y.w)),
-                       fmin(fmin(n.lo_z.x, n.lo_z.y), fmin(n.lo_z.z, n.lo_z.w)));
-}
-
-GC_FUNC float3 gc_bvh4_root_hi(GcBvh4Node n)
-{
-    return make_float3(fmax(fmax(n.hi_x.x, n.hi_x.y), fmax(n.hi_x.z, n.hi_x.w)),
-                       fmax(fmax(n.hi_y.x, n.hi_y.y), fmax(n.hi_y.z, n.hi_y.w)),
-                       fmax(fmax(n.hi_z.x, n.hi_z.y), fmax(n.hi_z.z, n.hi_z.w)));
-}
-
 /* Candidate hits of four triangles: hit.k says lane k is hit with t in [t_min, tmax]. */
 GC_STRUCT(GcTriangleHits4) {
     float4 t;
@@ -267,8 +252,7 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
     uint sp = 0u;
 
     /* Every box in the tree lies inside the root's children: one margin serves all. */
-    GcBvh4Node root = GC_BVH_NODE(0u);
-    r = gc_ray_with_margin(r, gc_bvh4_root_lo(root), gc_bvh4_root_hi(root));
+    r = gc_ray_with_extent_margin(r, gc_as_float(GC_BVH_NODE(0u).pad.x));
 
     uint ref = 0u; /* the root, an inner node */
     for (;;) {

@@ -91,22 +91,6 @@ inline GcEntries8 gc_box8_entry(GcRayPre r, float tmax, const GcBvh8Node& n)
 #define GC_LANE8(v, k) ((k) < 4 ? (v).a[(k) & 3] : (v).b[(k) & 3])
 #endif
 
-/* The root's bounds (the union of its children's), for gc_ray_with_margin. */
-GC_FUNC float gc_hmin4(float4 v) { return fmin(fmin(v.x, v.y), fmin(v.z, v.w)); }
-GC_FUNC float gc_hmax4(float4 v) { return fmax(fmax(v.x, v.y), fmax(v.z, v.w)); }
-
-GC_FUNC float3 gc_bvh8_root_lo(GcBvh8Node n)
-{
-    return make_float3(gc_hmin4(fmin(n.lo_x0, n.lo_x1)), gc_hmin4(fmin(n.lo_y0, n.lo_y1)),
-                       gc_hmin4(fmin(n.lo_z0, n.lo_z1)));
-}
-
-GC_FUNC float3 gc_bvh8_root_hi(GcBvh8Node n)
-{
-    return make_float3(gc_hmax4(fmax(n.hi_x0, n.hi_x1)), gc_hmax4(fmax(n.hi_y0, n.hi_y1)),
-                       gc_hmax4(fmax(n.hi_z0, n.hi_z1)));
-}
-
 /* Writes child k's (entry, ref) at the top of the stack and keeps it only if it was hit. */
 #define GC_BVH8_PUSH(k, c)                   \
     {                                        \
@@ -132,8 +116,7 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
     float stack_entry[GC_BVH8_STACK_SIZE];
     uint sp = 0u;
 
-    GcBvh8Node root = GC_BVH_NODE(0u);
-    r = gc_ray_with_margin(r, gc_bvh8_root_lo(root), gc_bvh8_root_hi(root));
+    r = gc_ray_with_extent_margin(r, gc_as_float(GC_BVH_NODE(0u).pad0.x));
 
     uint ref = 0u;
     for (;;) {

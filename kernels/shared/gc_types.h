@@ -57,7 +57,8 @@ GC_STRUCT(GcBvh4Node) {
     float4 lo_z;
     float4 hi_z;
     uint4 child;
-    uint4 pad; /* 0; keeps the node two 64-byte cache lines */
+    uint4 pad; /* root: x = bits of the scene's extent (largest |coordinate| of its bounds,
+                * for the traversal's margin, gc_ray_with_extent_margin); otherwise 0 */
 } GC_STRUCT_END(GcBvh4Node)
 
 #define GC_BVH4_LEAF 0x80000000u
@@ -84,8 +85,8 @@ GC_STRUCT(GcBvh8Node) {
     float4 hi_z1;
     uint4 child0;
     uint4 child1;
-    uint4 pad0; /* 0; four 64-byte cache lines */
-    uint4 pad1;
+    uint4 pad0; /* root: x = bits of the scene's extent, as GcBvh4Node.pad; otherwise 0 */
+    uint4 pad1; /* 0; the node is four 64-byte cache lines */
 } GC_STRUCT_END(GcBvh8Node)
 
 /* Four triangles of a BVH4 leaf in SoA form, tested together by one ray. Lane k is the
