@@ -186,11 +186,11 @@ __kernel void whitted_render(const GcRenderParams params,
         const GcWhittedSpecular spec = gc_whitted_specular(m, s.ns, wo);
         gc_whitted_push(stack_ray, stack_weight, stack_depth, &sp,
                         gc_make_ray(gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, spec.refract_dir)),
-                                    spec.refract_dir, 0.0f, GC_FLOAT_MAX),
+                                    spec.refract_dir, 0.0f, GC_RAY_UNBOUNDED),
                         weight * spec.refract_weight, depth + 1u);
         gc_whitted_push(stack_ray, stack_weight, stack_depth, &sp,
                         gc_make_ray(gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, spec.reflect_dir)),
-                                    spec.reflect_dir, 0.0f, GC_FLOAT_MAX),
+                                    spec.reflect_dir, 0.0f, GC_RAY_UNBOUNDED),
                         weight * spec.reflect_weight, depth + 1u);
     }
     film[pixel] += (float4)(L, 1.0f);

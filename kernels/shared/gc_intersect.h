@@ -36,13 +36,7 @@
 #include "gc_accessors.h"
 #include "gc_types.h"
 
-/* +infinity as a bit pattern: none of the three languages shares an INFINITY spelling.
- * (Qualified on the host so the macro also works outside namespace gc::dev.) */
-#if defined(GC_HOST)
-#define GC_INFINITY (::gc::dev::gc_as_float(0x7f800000u))
-#else
-#define GC_INFINITY gc_as_float(0x7f800000u)
-#endif
+/* GC_INFINITY: gc_accessors.h. */
 
 /* What gc_intersect_aabb returns on a miss. Every hit returns a finite value (at least one
  * direction component is non-zero, so one slab gives a finite exit), so `t < GC_AABB_MISS`
@@ -141,7 +135,8 @@ GC_FUNC GcRayPre gc_ray_precompute(GcRay ray)
     r.org = ray.org_tmin;
     r.dir = ray.dir_tmax;
     float3 d = GC_XYZ(ray.dir_tmax);
-    /* 1/(+0) = +inf and 1/(-0) = -inf: the slab test below is written for these. */
+    /* 1/(+0) = +inf and 1/(-0) = -inf: the slab test below is written for these.
+     * (Compilers divide the whole (d, t_max) register: see GC_RAY_UNBOUNDED.) */
     float3 inv = make_float3(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
     /* w: the dominant axis's |1/d|, the smallest, for the box test's absolute margin. */
     r.inv_dir = make_float4(inv.x, inv.y, inv.z, fmin(fabs(inv.x), fmin(fabs(inv.y), fabs(inv.z))));

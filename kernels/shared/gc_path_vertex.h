@@ -314,7 +314,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
             path.radiance = gc_with_w(L, path.radiance.w);
             if (path.depth < params.max_depth) {
                 const float3 d = -wo_world;
-                res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, d)), d, 0.0f, GC_FLOAT_MAX);
+                res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, d)), d, 0.0f, GC_RAY_UNBOUNDED);
                 path.flags = GC_PATH_SPECULAR;
                 res.flags = GC_VERTEX_CONTINUE;
             }
@@ -357,7 +357,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
             if (contribution.x > 0.0f || contribution.y > 0.0f || contribution.z > 0.0f) {
                 const float3 origin = gc_offset_ray_origin(s.p, gc_side_normal(s.ng, ls.wi));
                 if (ls.kind == GC_LIGHT_ENV) {
-                    res.shadow.ray = gc_make_ray(origin, ls.wi, 0.0f, GC_FLOAT_MAX);
+                    res.shadow.ray = gc_make_ray(origin, ls.wi, 0.0f, GC_RAY_UNBOUNDED);
                 } else {
                     const float3 d = ls.target - origin;
                     const float len = length(d);
@@ -396,7 +396,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
         return res;
     }
     const float3 wi_world = gc_frame_to_world(frame, bs.wi);
-    res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi_world)), wi_world, 0.0f, GC_FLOAT_MAX);
+    res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi_world)), wi_world, 0.0f, GC_RAY_UNBOUNDED);
     path.throughput = gc_with_w(beta, bs.pdf_w);
     path.flags = (bs.flags & GC_BSDF_SPECULAR) != 0u ? GC_PATH_SPECULAR : 0u;
     res.path = path;

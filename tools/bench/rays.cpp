@@ -106,7 +106,7 @@ RaySet make_rays(const Scene& scene, const FlatBvh& bvh, const Camera& camera, i
         basis(n, t, b);
         const dev::float3 l = dev::gc_sample_cosine_hemisphere(random01(i, 0), random01(i, 1));
         const glm::vec3 dir = glm::normalize(l.x * t + l.y * b + l.z * n);
-        set.diffuse.push_back(dev::gc_make_ray(p, dir, 0.0f, GC_FLOAT_MAX));
+        set.diffuse.push_back(dev::gc_make_ray(p, dir, 0.0f, GC_RAY_UNBOUNDED));
 
         glm::vec3 target;
         const float u0 = random01(i, 2);
