@@ -1,7 +1,9 @@
 /*
  * gc_traverse4.h — gc_trace_impl over the BVH4 layout (GcBvh4Node, GcTriangle4 in
  * gc_types.h). gc_traverse.h includes it instead of its BVH2 loop when the program is built
- * with -D GC_BVH_WIDE, which the host does for CPU devices (host/render/bvh_layout.h).
+ * with -D GC_BVH_WIDE, which the host does for CPUs without 8-wide SIMD; CPUs with AVX get
+ * the BVH8 of gc_traverse8.h, which reuses this file's leaf test and helpers
+ * (host/render/device_bvh.h chooses).
  *
  * Why a second layout: on a CPU, PoCL runs each work-item's traversal loop as scalar code (the
  * loop diverges from ray to ray, so it cannot be vectorised across work-items), and a BVH2
@@ -17,7 +19,8 @@
  * candidate gets the same t, u, v. The closest hit is the (t, scene index) minimum with the
  * tie rule of gc_traverse.h, which does not depend on the tree, and boxes are pruned with
  * the same widened `entry <= t_best`: the traversal equals the brute force, as the BVH2's
- * does (tests/bvh/wide_bvh_test.cpp, tests/render/trace_device_test.cpp).
+ * does (tests/bvh/traverse_test.cpp and wide_bvh_test.cpp on the host,
+ * tests/render/device_kernels_test.cpp and alpha_mask_test.cpp on every device).
  *
  * OpenCL C and C++ only (the GLSL reference keeps the BVH2). The four-lane helpers below are
  * spelled once per dialect: OpenCL vector comparisons give int4 masks (-1 true, 0 false) and

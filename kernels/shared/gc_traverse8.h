@@ -5,10 +5,11 @@
  * expression in OpenCL (one AVX instruction per step), and two gc_box4_entry calls on the
  * host, which perform the same operations per lane and so give the same bits.
  *
- * Child order: the children hit are pushed unconditionally-written, conditionally-advanced
- * (no branch per child), then the few pushed (typically 1-3) are insertion-sorted so that
- * the nearest is on top; it is popped at once. Same results as every other layout (the tie
- * rule of gc_traverse.h).
+ * Child order: every child's (entry, reference) is written to the stack and the stack
+ * pointer advances only past those hit (no branch per child); the few pushed (typically
+ * 1-3) are then insertion-sorted so that the nearest is on top, and it is popped at once.
+ * Same results as every other layout (the tie rule of gc_traverse.h); the stack holds at
+ * most seven deferred children per level, and the BVH8 is no deeper than its BVH2.
  */
 #ifndef GC_TRAVERSE8_H
 #define GC_TRAVERSE8_H
