@@ -230,6 +230,39 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
         }                                                                                          \
     }
 
+/* The two wide traversals' shared steps, as statement macros over their locals (r, best,
+ * t_best, any_hit, stack_ref, stack_entry, sp, ref): they update several of them and end
+ * the enclosing function (any hit) or loop (empty stack), which a function cannot. */
+
+/* Tests every GcTriangle4 block of leaf reference `leaf_ref`, lane by lane in order. */
+#define GC_WIDE_LEAF(leaf_ref)                                                                \
+    {                                                                                          \
+        uint first_ = (leaf_ref) & GC_BVH4_LEAF_FIRST_MASK;                                    \
+        uint end_ = first_ + (((leaf_ref) >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;            \
+        for (uint b_ = first_; b_ < end_; ++b_) {                                              \
+            GcTriangle4 q = GC_BVH_TRI(b_);                                                    \
+            GcTriangleHits4 h = gc_intersect_triangle4(r, q, t_best);                          \
+            if (!gc_any4(h.hit)) continue;                                                     \
+            GC_BVH4_ACCEPT(x)                                                                  \
+            GC_BVH4_ACCEPT(y)                                                                  \
+            GC_BVH4_ACCEPT(z)                                                                  \
+            GC_BVH4_ACCEPT(w)                                                                  \
+        }                                                                                      \
+    }
+
+/* Pops the nearest deferred child that can still beat t_best into `ref`, or leaves the
+ * enclosing traversal loop when none can. */
+#define GC_WIDE_POP()                                                                          \
+    {                                                                                          \
+        bool found_ = false;                                                                   \
+        while (sp > 0u && !found_) {                                                           \
+            --sp;                                                                              \
+            found_ = gc_aabb_entry_within(stack_entry[sp], t_best);                           \
+        }                                                                                      \
+        if (!found_) break;                                                                    \
+        ref = stack_ref[sp];                                                                   \
+    }
+
 #if !defined(GC_TRAVERSE4_HELPERS_ONLY)
 /* One body for both queries: any_hit returns at the first accepted triangle.
  *
@@ -285,26 +318,9 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
                 continue;
             }
         } else {
-            uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
-            uint end = first + ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
-            for (uint b = first; b < end; ++b) {
-                GcTriangle4 q = GC_BVH_TRI(b);
-                GcTriangleHits4 h = gc_intersect_triangle4(r, q, t_best);
-                if (!gc_any4(h.hit)) continue;
-                GC_BVH4_ACCEPT(x)
-                GC_BVH4_ACCEPT(y)
-                GC_BVH4_ACCEPT(z)
-                GC_BVH4_ACCEPT(w)
-            }
+            GC_WIDE_LEAF(ref)
         }
-        /* Pop the nearest deferred child that can still beat t_best. */
-        bool found = false;
-        while (sp > 0u && !found) {
-            --sp;
-            found = gc_aabb_entry_within(stack_entry[sp], t_best);
-        }
-        if (!found) break;
-        ref = stack_ref[sp];
+        GC_WIDE_POP()
     }
     return best;
 }
@@ -313,6 +329,8 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
 #undef GC_BVH4_PUSH
 #undef GC_BVH4_SOLID
 #undef GC_BVH4_ACCEPT
+#undef GC_WIDE_LEAF
+#undef GC_WIDE_POP
 #endif /* !GC_TRAVERSE4_HELPERS_ONLY */
 
 GC_NAMESPACE_END

@@ -160,31 +160,16 @@ GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
                 continue;
             }
         } else {
-            uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
-            uint end = first + ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
-            for (uint b = first; b < end; ++b) {
-                GcTriangle4 q = GC_BVH_TRI(b);
-                GcTriangleHits4 h = gc_intersect_triangle4(r, q, t_best);
-                if (!gc_any4(h.hit)) continue;
-                GC_BVH4_ACCEPT(x)
-                GC_BVH4_ACCEPT(y)
-                GC_BVH4_ACCEPT(z)
-                GC_BVH4_ACCEPT(w)
-            }
+            GC_WIDE_LEAF(ref)
         }
-        /* Pop the nearest deferred child that can still beat t_best. */
-        bool found = false;
-        while (sp > 0u && !found) {
-            --sp;
-            found = gc_aabb_entry_within(stack_entry[sp], t_best);
-        }
-        if (!found) break;
-        ref = stack_ref[sp];
+        GC_WIDE_POP()
     }
     return best;
 }
 
 #undef GC_BVH8_PUSH
+#undef GC_WIDE_LEAF
+#undef GC_WIDE_POP
 #undef GC_BVH4_SORT2
 #undef GC_BVH4_PUSH
 #undef GC_BVH4_SOLID
