@@ -73,10 +73,10 @@
 #define GC_BVH_MAX_DEPTH 64u
 
 #if defined(GC_BVH_WIDE8)
-/* CPUs with 8-wide SIMD: the BVH8 layout's gc_trace_impl. */
+/* CPUs with 8-wide SIMD: the BVH8 layout's gc_trace_wide. */
 #include "gc_traverse8.h"
 #elif defined(GC_BVH_WIDE)
-/* CPUs: the BVH4 layout's gc_trace_impl. */
+/* CPUs: the BVH4 layout's gc_trace_wide. */
 #include "gc_traverse4.h"
 #else
 
@@ -163,16 +163,23 @@ GC_NAMESPACE_END
 
 GC_NAMESPACE_BEGIN
 
+/* The layout's body: the wide ones take the ray as two float4s (see gc_traverse4.h). */
+#if defined(GC_BVH_WIDE)
+#define GC_TRACE_BODY(ray, any_hit) gc_trace_wide(GC_BVH_ARGS, (ray).org_tmin, (ray).dir_tmax, any_hit)
+#else
+#define GC_TRACE_BODY(ray, any_hit) gc_trace_impl(GC_BVH_ARGS, ray, any_hit)
+#endif
+
 /* Closest hit in [t_min, t_max]; ties in t go to the smaller scene triangle index. */
 GC_FUNC GcHit gc_trace_closest(GC_BVH_PARAMS, GcRay ray)
 {
-    return gc_trace_impl(GC_BVH_ARGS, ray, false);
+    return GC_TRACE_BODY(ray, false);
 }
 
 /* True when any triangle is hit in [t_min, t_max] (shadow rays). */
 GC_FUNC bool gc_trace_any(GC_BVH_PARAMS, GcRay ray)
 {
-    return gc_trace_impl(GC_BVH_ARGS, ray, true).prim != GC_INVALID;
+    return GC_TRACE_BODY(ray, true).prim != GC_INVALID;
 }
 
 GC_NAMESPACE_END

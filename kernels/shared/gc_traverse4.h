@@ -1,5 +1,5 @@
 /*
- * gc_traverse4.h — gc_trace_impl over the BVH4 layout (GcBvh4Node, GcTriangle4 in
+ * gc_traverse4.h — gc_trace_wide over the BVH4 layout (GcBvh4Node, GcTriangle4 in
  * gc_types.h). gc_traverse.h includes it instead of its BVH2 loop when the program is built
  * with -D GC_BVH_WIDE, which the host does for CPUs without 8-wide SIMD; CPUs with AVX get
  * the BVH8 of gc_traverse8.h, which reuses this file's leaf test and helpers
@@ -263,20 +263,32 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
         ref = stack_ref[sp];                                                                   \
     }
 
-#if !defined(GC_TRAVERSE4_HELPERS_ONLY)
-/* One body for both queries: any_hit returns at the first accepted triangle.
+/* The wide traversals' entry point, gc_trace_wide: one body for both queries (any_hit
+ * returns at the first accepted triangle), called by gc_traverse.h's gc_trace_closest/any.
  *
  * Not inlined in OpenCL: PoCL inlines every call by default, so a kernel that asks for both
  * a closest and an any hit (the path megakernel) compiled the traversal twice. One
  * out-of-line copy cut PoCL's cold build + first launch of megakernel.cl from 2.62 to 2.32 s
- * (H200 box, medians of 3) at no measured cost in samples per second. CPUs only: this is the
- * CPU layout, and a call costs a GPU far more. */
+ * (H200 box, medians of 3) at no measured cost in samples per second. CPUs only: these are
+ * the CPU layouts, and a call costs a GPU far more.
+ *
+ * The ray comes as its two float4s, which travel in registers: a GcRay argument went through
+ * memory as two 16-byte stores read back by one 32-byte load, which store forwarding cannot
+ * serve (perf: the hottest instruction of the megakernel's own code). */
 #if defined(GC_OPENCL)
-static __attribute__((noinline)) GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
+#define GC_WIDE_TRACE_BEGIN                                                                            \
+    static __attribute__((noinline)) GcHit gc_trace_wide(GC_BVH_PARAMS, float4 ray_org_tmin, float4 ray_dir_tmax, \
+                                                         bool any_hit)
 #else
-GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
+#define GC_WIDE_TRACE_BEGIN GC_FUNC GcHit gc_trace_wide(GC_BVH_PARAMS, float4 ray_org_tmin, float4 ray_dir_tmax, bool any_hit)
 #endif
+
+#if !defined(GC_TRAVERSE4_HELPERS_ONLY)
+GC_WIDE_TRACE_BEGIN
 {
+    GcRay ray;
+    ray.org_tmin = ray_org_tmin;
+    ray.dir_tmax = ray_dir_tmax;
     GcHit best = gc_no_hit();
     if (!gc_ray_is_valid(ray)) return best;
 

@@ -1,5 +1,5 @@
 /*
- * gc_traverse8.h — gc_trace_impl over the BVH8 layout (GcBvh8Node + GcTriangle4 leaves),
+ * gc_traverse8.h — gc_trace_wide over the BVH8 layout (GcBvh8Node + GcTriangle4 leaves),
  * compiled when the program is built with -D GC_BVH_WIDE -D GC_BVH_WIDE8. The leaves and the
  * triangle test are gc_traverse4.h's; the node test covers eight boxes with one float8
  * expression in OpenCL (one AVX instruction per step), and two gc_box4_entry calls on the
@@ -101,12 +101,11 @@ inline GcEntries8 gc_box8_entry(GcRayPre r, float tmax, const GcBvh8Node& n)
         sp += e_ < GC_AABB_MISS ? 1u : 0u;   \
     }
 
-#if defined(GC_OPENCL)
-static __attribute__((noinline)) GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
-#else
-GC_FUNC GcHit gc_trace_impl(GC_BVH_PARAMS, GcRay ray, bool any_hit)
-#endif
+GC_WIDE_TRACE_BEGIN
 {
+    GcRay ray;
+    ray.org_tmin = ray_org_tmin;
+    ray.dir_tmax = ray_dir_tmax;
     GcHit best = gc_no_hit();
     if (!gc_ray_is_valid(ray)) return best;
 
