@@ -55,31 +55,6 @@ void compute_ranges(Bvh2View& view)
     }
 }
 
-dev::GcBvh4Node empty_node()
-{
-    constexpr float inf = std::numeric_limits<float>::infinity();
-    dev::GcBvh4Node node;
-    node.lo_x = node.lo_y = node.lo_z = dev::float4(inf);
-    node.hi_x = node.hi_y = node.hi_z = dev::float4(-inf);
-    node.child = dev::uint4(GC_INVALID);
-    node.pad = dev::uint4(0u);
-    return node;
-}
-
-void make_empty(dev::GcBvh4Node& node)
-{
-    node = empty_node();
-}
-
-void make_empty(dev::GcBvh8Node& node)
-{
-    constexpr float inf = std::numeric_limits<float>::infinity();
-    node.lo_x0 = node.lo_x1 = node.lo_y0 = node.lo_y1 = node.lo_z0 = node.lo_z1 = dev::float4(inf);
-    node.hi_x0 = node.hi_x1 = node.hi_y0 = node.hi_y1 = node.hi_z0 = node.hi_z1 = dev::float4(-inf);
-    node.child0 = node.child1 = dev::uint4(GC_INVALID);
-    node.pad0 = node.pad1 = dev::uint4(0u);
-}
-
 dev::GcTriangle4 empty_block()
 {
     dev::GcTriangle4 block{};
@@ -112,6 +87,20 @@ void set_slot(dev::GcBvh8Node& node, int slot, const dev::GcBvhNode& box, std::u
     (upper ? node.child1 : node.child0)[k] = child;
 }
 
+// A node whose every slot is empty (bounds +inf .. -inf, child GC_INVALID), pads 0: the
+// same set_slot that fills real slots writes the empty ones.
+template <class Node, std::uint32_t Width>
+Node empty_node()
+{
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    dev::GcBvhNode empty_box;
+    empty_box.lo = dev::float4(inf, inf, inf, 0.0f);
+    empty_box.hi = dev::float4(-inf, -inf, -inf, 0.0f);
+    Node node{};
+    for (std::uint32_t k = 0; k < Width; ++k) set_slot(node, static_cast<int>(k), empty_box, GC_INVALID);
+    return node;
+}
+
 template <class Node, std::uint32_t Width>
 class Widener {
 public:
@@ -125,9 +114,9 @@ public:
         const std::uint32_t blocks = (count + kBlockLanes - 1) / kBlockLanes;
         const std::size_t first_block = m_out.blocks.size();
         if (blocks == 0 || blocks > GC_BVH4_LEAF_MAX_BLOCKS)
-            throw std::logic_error("BVH4: a leaf of " + std::to_string(count) + " triangles does not fit one reference");
+            throw std::logic_error("wide BVH: a leaf of " + std::to_string(count) + " triangles does not fit one reference");
         if (first_block + blocks - 1 > GC_BVH4_LEAF_FIRST_MASK)
-            throw std::length_error("BVH4: more than " + std::to_string(GC_BVH4_LEAF_FIRST_MASK + 1u) +
+            throw std::length_error("wide BVH: more than " + std::to_string(GC_BVH4_LEAF_FIRST_MASK + 1u) +
                                     " triangle blocks");
         for (std::uint32_t b = 0; b < blocks; ++b) {
             dev::GcTriangle4 block = empty_block();
@@ -177,8 +166,7 @@ public:
         }
         const auto index = static_cast<std::uint32_t>(m_out.nodes.size());
         if (index > ~GC_BVH4_LEAF) throw std::length_error("wide BVH: too many nodes");
-        m_out.nodes.emplace_back();
-        make_empty(m_out.nodes.back());
+        m_out.nodes.push_back(empty_node<Node, Width>());
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::uint32_t c = children[k];
             const std::uint32_t ref = m_view.becomes_leaf(c) ? leaf(c) : inner(c);
@@ -196,8 +184,7 @@ template <class Node, std::uint32_t Width>
 WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
 {
     WideBvhOf<Node> out;
-    out.nodes.emplace_back();
-    make_empty(out.nodes[0]);
+    out.nodes.push_back(empty_node<Node, Width>());
     if (bvh.nodes.empty() || bvh.scene_triangle_count() == 0) {
         out.blocks.push_back(empty_block());
         return out;

@@ -283,26 +283,27 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
 #define GC_WIDE_TRACE_BEGIN GC_FUNC GcHit gc_trace_wide(GC_BVH_PARAMS, float4 ray_org_tmin, float4 ray_dir_tmax, bool any_hit)
 #endif
 
+/* The wide bodies' locals: the ray (a miss if invalid), its precomputation with the margin
+ * from the scene extent whose bits the root stores in `extent_bits` (every box lies inside
+ * the root's children, so one margin serves all), the best hit so far, the stack of
+ * deferred children, and `ref`, the node being visited, starting at the root. */
+#define GC_WIDE_TRACE_SETUP(stack_size, extent_bits)                                          \
+    GcRay ray;                                                                                 \
+    ray.org_tmin = ray_org_tmin;                                                               \
+    ray.dir_tmax = ray_dir_tmax;                                                               \
+    GcHit best = gc_no_hit();                                                                  \
+    if (!gc_ray_is_valid(ray)) return best;                                                    \
+    GcRayPre r = gc_ray_with_extent_margin(gc_ray_precompute(ray), gc_as_float(extent_bits));  \
+    float t_best = gc_ray_tmax(ray);                                                           \
+    uint stack_ref[stack_size];                                                                \
+    float stack_entry[stack_size];                                                             \
+    uint sp = 0u;                                                                              \
+    uint ref = 0u;
+
 #if !defined(GC_TRAVERSE4_HELPERS_ONLY)
 GC_WIDE_TRACE_BEGIN
 {
-    GcRay ray;
-    ray.org_tmin = ray_org_tmin;
-    ray.dir_tmax = ray_dir_tmax;
-    GcHit best = gc_no_hit();
-    if (!gc_ray_is_valid(ray)) return best;
-
-    GcRayPre r = gc_ray_precompute(ray);
-    float t_best = gc_ray_tmax(ray);
-
-    uint stack_ref[GC_BVH4_STACK_SIZE];
-    float stack_entry[GC_BVH4_STACK_SIZE];
-    uint sp = 0u;
-
-    /* Every box in the tree lies inside the root's children: one margin serves all. */
-    r = gc_ray_with_extent_margin(r, gc_as_float(GC_BVH_NODE(0u).pad.x));
-
-    uint ref = 0u; /* the root, an inner node */
+    GC_WIDE_TRACE_SETUP(GC_BVH4_STACK_SIZE, GC_BVH_NODE(0u).pad.x)
     for (;;) {
         if ((ref & GC_BVH4_LEAF) == 0u) {
             GcBvh4Node n = GC_BVH_NODE(ref);
@@ -343,6 +344,8 @@ GC_WIDE_TRACE_BEGIN
 #undef GC_BVH4_ACCEPT
 #undef GC_WIDE_LEAF
 #undef GC_WIDE_POP
+#undef GC_WIDE_TRACE_SETUP
+#undef GC_WIDE_TRACE_BEGIN
 #endif /* !GC_TRAVERSE4_HELPERS_ONLY */
 
 GC_NAMESPACE_END

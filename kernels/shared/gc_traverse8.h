@@ -103,22 +103,7 @@ inline GcEntries8 gc_box8_entry(GcRayPre r, float tmax, const GcBvh8Node& n)
 
 GC_WIDE_TRACE_BEGIN
 {
-    GcRay ray;
-    ray.org_tmin = ray_org_tmin;
-    ray.dir_tmax = ray_dir_tmax;
-    GcHit best = gc_no_hit();
-    if (!gc_ray_is_valid(ray)) return best;
-
-    GcRayPre r = gc_ray_precompute(ray);
-    float t_best = gc_ray_tmax(ray);
-
-    uint stack_ref[GC_BVH8_STACK_SIZE];
-    float stack_entry[GC_BVH8_STACK_SIZE];
-    uint sp = 0u;
-
-    r = gc_ray_with_extent_margin(r, gc_as_float(GC_BVH_NODE(0u).pad0.x));
-
-    uint ref = 0u;
+    GC_WIDE_TRACE_SETUP(GC_BVH8_STACK_SIZE, GC_BVH_NODE(0u).pad0.x)
     for (;;) {
         if ((ref & GC_BVH4_LEAF) == 0u) {
             GcBvh8Node n = GC_BVH_NODE(ref);
@@ -167,6 +152,8 @@ GC_WIDE_TRACE_BEGIN
 }
 
 #undef GC_BVH8_PUSH
+#undef GC_WIDE_TRACE_SETUP
+#undef GC_WIDE_TRACE_BEGIN
 #undef GC_WIDE_LEAF
 #undef GC_WIDE_POP
 #undef GC_BVH4_SORT2
