@@ -238,6 +238,7 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
             const double mrays = times.empty() ? 0.0 : double(kind.rays->size()) / median(times) / 1e6;
             json& j = out["rays"][kind.name]["devices"][d.label()];
             j["mrays_per_s"] = json_number(mrays);
+            j["bvh_layout"] = tracer.layout();  // BVH2 on GPUs, BVH8 or BVH4 on CPUs
             std::string extra;
             if (embree) {
                 const double agree = agreement(result, embree_result[k]);
@@ -264,7 +265,7 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
                               bytes, cost[k].inner_visits, cost[k].triangle_tests, bound, 100.0 * mrays / bound);
                 extra += buffer;
             }
-            say("  %s %-7s: %.2f Mrays/s%s\n", d.label().c_str(), kind.name, mrays, extra.c_str());
+            say("  %s %-7s: %.2f Mrays/s (%s)%s\n", d.label().c_str(), kind.name, mrays, tracer.layout(), extra.c_str());
         }
     }
 }
