@@ -44,6 +44,7 @@
 #include "gc_platform.h"
 #include "gc_types.h"
 #include "gc_sampling.h"
+#include "gc_trig.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -246,10 +247,10 @@ GC_FUNC float3 gc_ggx_sample_visible_normal(float3 wo, float alpha, float u1, fl
     const float3 t1 = len2 > 0.0f ? make_float3(-vh.y, vh.x, 0.0f) * (1.0f / sqrt(len2)) : make_float3(1.0f, 0.0f, 0.0f);
     const float3 t2 = cross(vh, t1);
     const float r = sqrt(u1);
-    const float phi = 2.0f * GC_PI * u2;
-    const float p1 = r * cos(phi);
+    const float2 cs = gc_cos_sin_turns(u2);
+    const float p1 = r * cs.x;
     const float s = 0.5f * (1.0f + vh.z);
-    const float p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * (r * sin(phi));
+    const float p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * (r * cs.y);
     const float3 nh = t1 * p1 + t2 * p2 + vh * sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2));
     return normalize(make_float3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
 }

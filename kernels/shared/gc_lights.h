@@ -21,6 +21,7 @@
 #define GC_LIGHTS_H
 
 #include "gc_path.h"
+#include "gc_trig.h"
 
 #ifndef GC_LIGHTS_PARAMS
 #if defined(GC_GLSL)
@@ -66,10 +67,10 @@ GC_FUNC float2 gc_env_uv(float3 d)
 
 GC_FUNC float3 gc_env_direction(float u, float v)
 {
-    const float theta = GC_PI * v;
-    const float phi = 2.0f * GC_PI * u;
-    const float st = sin(theta);
-    return make_float3(st * sin(phi), cos(theta), -st * cos(phi));
+    /* theta = pi v is half a turn times v. */
+    const float2 theta = gc_cos_sin_turns(0.5f * v);
+    const float2 phi = gc_cos_sin_turns(u);
+    return make_float3(theta.y * phi.y, theta.x, -theta.y * phi.x);
 }
 
 GC_FUNC uint gc_env_texel_x(GcRenderParams p, float u) { return gc_uint(fmin(fmax(u, 0.0f) * gc_float(p.env_width), gc_float(p.env_width - 1u))); }
@@ -99,7 +100,7 @@ GC_FUNC float gc_env_pdf_w(GC_LIGHTS_PARAMS, GcRenderParams p, float3 d)
     const float2 uv = gc_env_uv(d);
     const uint x = gc_env_texel_x(p, uv.x);
     const uint y = gc_env_texel_y(p, uv.y);
-    const float sin_theta = sin(GC_PI * uv.y);
+    const float sin_theta = gc_cos_sin_turns(0.5f * uv.y).y; /* sin(pi v) */
     if (!(sin_theta > 0.0f)) return 0.0f;
     const uint row = y * (p.env_width + 1u);
     const float p_row = GC_ENV_MARGINAL(y + 1u) - GC_ENV_MARGINAL(y);

@@ -12,6 +12,7 @@
 
 #include "gc_platform.h"
 #include "gc_frame.h"
+#include "gc_trig.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -30,16 +31,14 @@ GC_FUNC float2 gc_sample_concentric_disk(float u0, float u1)
     float a = 2.0f * u0 - 1.0f;
     float b = 2.0f * u1 - 1.0f;
     if (a == 0.0f && b == 0.0f) return make_float2(0.0f, 0.0f);
-    float r;
-    float phi;
+    /* phi = pi/4 (b/a) in the first case, pi/2 - pi/4 (a/b) in the second, whose cosine and
+     * sine are the sine and cosine of pi/4 (a/b): both angles stay within [-pi/4, pi/4]. */
     if (fabs(a) > fabs(b)) {
-        r = a;
-        phi = (0.25f * GC_PI) * (b / a);
-    } else {
-        r = b;
-        phi = 0.5f * GC_PI - (0.25f * GC_PI) * (a / b);
+        const float2 cs = gc_cos_sin_quarter((0.25f * GC_PI) * (b / a));
+        return make_float2(a * cs.x, a * cs.y);
     }
-    return make_float2(r * cos(phi), r * sin(phi));
+    const float2 cs = gc_cos_sin_quarter((0.25f * GC_PI) * (a / b));
+    return make_float2(b * cs.y, b * cs.x);
 }
 
 /* Malley's method: lift a uniform disk point to the hemisphere; the projection makes the
@@ -65,8 +64,8 @@ GC_FUNC float3 gc_sample_uniform_sphere(float u0, float u1)
 {
     float z = 1.0f - 2.0f * u0;
     float r = sqrt(fmax(0.0f, 1.0f - z * z));
-    float phi = 2.0f * GC_PI * u1;
-    return make_float3(r * cos(phi), r * sin(phi), z);
+    const float2 cs = gc_cos_sin_turns(u1);
+    return make_float3(r * cs.x, r * cs.y, z);
 }
 
 GC_FUNC float gc_uniform_sphere_pdf(void)
@@ -108,8 +107,8 @@ GC_FUNC float3 gc_sample_phong_lobe(float3 axis, float exponent, float u0, float
 {
     float cos_a = pow(1.0f - u0, 1.0f / (exponent + 1.0f));
     float sin_a = sqrt(fmax(0.0f, 1.0f - cos_a * cos_a));
-    float phi = 2.0f * GC_PI * u1;
-    float3 d = make_float3(sin_a * cos(phi), sin_a * sin(phi), cos_a);
+    const float2 cs = gc_cos_sin_turns(u1);
+    float3 d = make_float3(sin_a * cs.x, sin_a * cs.y, cos_a);
     return gc_frame_to_world(gc_frame_from_normal(axis), d);
 }
 

@@ -10,6 +10,7 @@
 
 #include "../bvh/test_scenes.h"
 #include "gc_rng.h"
+#include "gc_sampling.h"
 #include "host/bvh/bvh.h"
 #include "host/bvh/traverse_host.h"
 #include "host/cl/buffer.h"
@@ -180,6 +181,48 @@ TEST(DeviceRng, StreamEqualsHost)
             }
         }
         std::printf("[rng] %s: %u keys, %zu differ from the host\n", device.device_name.c_str(), count, differing);
+        EXPECT_EQ(differing, 0u) << device.device_name;
+    }
+}
+
+TEST(DeviceSampling, TrigAndHemisphereEqualHost)
+{
+    const std::vector<cl::DeviceInfo> devices = devices_or_skip();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    // Random pairs plus the quarter turns and the ends of [0, 1).
+    std::vector<glm::vec2> inputs;
+    test::Rng rng(7);
+    for (std::uint32_t i = 0; i < 8192; ++i)
+        inputs.push_back({static_cast<float>(rng.below(1u << 24)) / 16777216.0f,
+                          static_cast<float>(rng.below(1u << 24)) / 16777216.0f});
+    for (const float t : {0.0f, 0.125f, 0.25f, 0.375f, 0.5f, 0.625f, 0.75f, 0.875f, 1.0f, 0.99999994f})
+        inputs.push_back({t, t});
+    const auto count = static_cast<std::uint32_t>(inputs.size());
+    for (const cl::DeviceInfo& device : devices) {
+        const cl::Context context(device);
+        const cl::Program program(context, "sampling_probe.cl");
+        auto input_buf = cl::Buffer<glm::vec2>::create(context, count, CL_MEM_READ_ONLY, "sampling inputs");
+        auto turns_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "trig values");
+        auto hemisphere_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "hemisphere samples");
+        input_buf.write(inputs);
+        cl::Kernel kernel = program.kernel("sampling_probe");
+        kernel.set_args(input_buf, turns_buf, hemisphere_buf, count);
+        kernel.launch(context, count);
+        context.finish();
+        std::vector<glm::vec4> turns(count);
+        std::vector<glm::vec4> hemisphere(count);
+        turns_buf.read(turns);
+        hemisphere_buf.read(hemisphere);
+        std::size_t differing = 0;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const glm::vec2 u = inputs[i];
+            const glm::vec4 expected_trig(dev::gc_cos_sin_turns(u.x),
+                                          dev::gc_cos_sin_quarter((2.0f * u.y - 1.0f) * (0.25f * GC_PI)));
+            const glm::vec4 expected_dir(dev::gc_sample_cosine_hemisphere(u.x, u.y), 0.0f);
+            if (turns[i] != expected_trig || hemisphere[i] != expected_dir) ++differing;
+        }
+        std::printf("[sampling] %s: %u inputs, %zu differ from the host (bit for bit)\n", device.device_name.c_str(),
+                    count, differing);
         EXPECT_EQ(differing, 0u) << device.device_name;
     }
 }
