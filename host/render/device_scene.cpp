@@ -21,7 +21,8 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     const std::vector<dev::GcPointLight> lights = make_point_lights(scene);
     d.bvh = DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()));
     d.attribs = cl::read_only_buffer(context, make_triangle_attribs(scene), "triangle attributes");
-    d.materials = cl::read_only_buffer(context, make_materials(scene), "materials");
+    const std::vector<dev::GcMaterial> materials = make_materials(scene);
+    d.materials = cl::read_only_buffer(context, materials, "materials");
     d.textures = cl::read_only_buffer(context, textures.textures, "textures");
     d.texels = cl::read_only_buffer(context, textures.texels, "texels");
     d.emitters = cl::read_only_buffer(context, emitters, "emitters");
@@ -35,6 +36,7 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     d.texture_count = static_cast<std::uint32_t>(textures.textures.size());
     d.env_width = environment.width;
     d.env_height = environment.height;
+    d.features = kernel_features(materials, lights.size(), environment.width > 0);
     return d;
 }
 

@@ -10,6 +10,7 @@
 #include "host/cl/buffer.h"
 #include "host/render/device_bvh.h"
 #include "host/render/environment.h"
+#include "host/render/kernel_features.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -32,6 +33,7 @@ struct DeviceScene {
     std::uint32_t texture_count = 0;
     std::uint32_t env_width = 0;  // 0: no environment map
     std::uint32_t env_height = 0;
+    KernelFeatures features;  // what the programs rendering this scene must handle
 
     // Bytes of device memory the scene occupies (reported by --verbose and the benchmark).
     std::uint64_t bytes() const;

@@ -70,7 +70,7 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
                                                                 : load_environment_map(settings.env_map_path))),
       m_megakernel(settings.integrator == IntegratorKind::Path && path_megakernel_for(context.device())),
       m_program(context, integrator_program(settings.integrator, m_megakernel),
-                program_options(m_scene.bvh.layout()))
+                program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features))
 {
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());

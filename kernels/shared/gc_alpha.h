@@ -55,10 +55,14 @@ GC_NAMESPACE_BEGIN
  * same expression as gc_surface_at's, so the shading sees the texel this test saw. */
 GC_FUNC bool gc_alpha_solid(GC_ALPHA_PARAMS, uint scene_tri, float u, float v)
 {
+    /* A program built for a scene without alpha MASK (gc_features.h): every triangle is solid,
+     * and the traversal's test folds away (the buffers stay parameters, so that the kernels'
+     * signatures do not depend on the scene). */
+    if (GC_USE_ALPHA_MASK == 0) return true;
     const GcTriangleAttribs a = GC_ATTRIB(scene_tri);
     const GcMaterial m = GC_MATERIAL(a.material);
     float alpha = m.albedo.w;
-    if (m.albedo_texture != GC_INVALID) {
+    if (GC_USE_TEXTURES != 0 && m.albedo_texture != GC_INVALID) {
         const float b0 = 1.0f - u - v;
         const float tu = b0 * a.uv01.x + u * a.uv01.z + v * a.uv2_u;
         const float tv = b0 * a.uv01.y + u * a.uv01.w + v * a.uv2_v;

@@ -35,7 +35,7 @@ GC_FUNC float3 gc_aov_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 {
     GC_SHADE_UNUSED();
     float3 emission = GC_XYZ(m.emission);
-    if (m.emission_texture != GC_INVALID)
+    if (GC_USE_TEXTURES != 0 && m.emission_texture != GC_INVALID)
         emission *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.emission_texture), uv.x, uv.y));
     return emission;
 }

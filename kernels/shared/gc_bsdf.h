@@ -48,6 +48,10 @@
 
 GC_NAMESPACE_BEGIN
 
+/* m is of type `type` (a GC_MAT_* constant); constant false where the program was built for
+ * a scene without that type (gc_features.h), so its code drops out. */
+GC_FUNC bool gc_material_is(GcMaterial m, uint type) { return gc_uses_material(type) && m.type == type; }
+
 #define GC_BSDF_REFLECTION 1u   /* wi on the same side as wo */
 #define GC_BSDF_TRANSMISSION 2u /* wi on the other side */
 #define GC_BSDF_SPECULAR 4u     /* delta lobe: f, pdf_w are delta coefficients; no MIS */
@@ -74,7 +78,7 @@ GC_FUNC GcBsdfSample gc_bsdf_no_sample(void)
 /* True when the material has only delta lobes: next-event estimation and MIS cannot help. */
 GC_FUNC bool gc_bsdf_is_delta(GcMaterial m)
 {
-    return m.type == GC_MAT_DIELECTRIC;
+    return gc_material_is(m, GC_MAT_DIELECTRIC);
 }
 
 /* ------------------------------------------------------------------ two-sided helpers */
@@ -313,14 +317,14 @@ GC_FUNC float gc_pbr_pdf_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
 GC_FUNC float3 gc_bsdf_eval(GcMaterial m, float3 albedo, float3 wo, float3 wi)
 {
     float3 zero = make_float3(0.0f, 0.0f, 0.0f);
-    if (m.type == GC_MAT_DIELECTRIC) return zero;
+    if (gc_material_is(m, GC_MAT_DIELECTRIC)) return zero;
     float side = gc_bsdf_side(wo);
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return zero;
-    if (m.type == GC_MAT_PHONG)
+    if (gc_material_is(m, GC_MAT_PHONG))
         return gc_phong_eval_upper(albedo, GC_XYZ(m.specular), gc_phong_exponent(m), wo, wi);
-    if (m.type == GC_MAT_PBR) return gc_pbr_eval_upper(m, albedo, wo, wi);
+    if (gc_material_is(m, GC_MAT_PBR)) return gc_pbr_eval_upper(m, albedo, wo, wi);
     /* GC_MAT_LAMBERT and the diffuse part of GC_MAT_MIRROR. Unknown types also get Lambert,
      * the loaders' default material. */
     return albedo * GC_INV_PI;
@@ -329,22 +333,22 @@ GC_FUNC float3 gc_bsdf_eval(GcMaterial m, float3 albedo, float3 wo, float3 wi)
 /* Solid-angle density with which gc_bsdf_sample produces wi (its non-delta part). */
 GC_FUNC float gc_bsdf_pdf(GcMaterial m, float3 albedo, float3 wo, float3 wi)
 {
-    if (m.type == GC_MAT_DIELECTRIC) return 0.0f;
+    if (gc_material_is(m, GC_MAT_DIELECTRIC)) return 0.0f;
     float side = gc_bsdf_side(wo);
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
-    if (m.type == GC_MAT_PHONG) {
+    if (gc_material_is(m, GC_MAT_PHONG)) {
         float p_spec = gc_bsdf_specular_prob(albedo, GC_XYZ(m.specular));
         if (p_spec < 0.0f) return 0.0f;
         return gc_phong_pdf_upper(p_spec, gc_phong_exponent(m), wo, wi);
     }
-    if (m.type == GC_MAT_MIRROR) {
+    if (gc_material_is(m, GC_MAT_MIRROR)) {
         float p_spec = gc_bsdf_specular_prob(albedo, GC_XYZ(m.specular));
         if (p_spec < 0.0f) return 0.0f;
         return (1.0f - p_spec) * gc_cosine_hemisphere_pdf(wi.z);
     }
-    if (m.type == GC_MAT_PBR) return gc_pbr_pdf_upper(m, albedo, wo, wi);
+    if (gc_material_is(m, GC_MAT_PBR)) return gc_pbr_pdf_upper(m, albedo, wo, wi);
     return gc_cosine_hemisphere_pdf(wi.z); /* Lambert */
 }
 
@@ -418,19 +422,19 @@ GC_FUNC GcBsdfSample gc_pbr_sample_transmission(GcMaterial m, float3 base, float
 /* Draws wi for wo; see the header comment for the meaning of the fields. */
 GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, float u0, float u1, float u2)
 {
-    if (m.type == GC_MAT_DIELECTRIC) return gc_dielectric_sample(m, wo, u0);
+    if (gc_material_is(m, GC_MAT_DIELECTRIC)) return gc_dielectric_sample(m, wo, u0);
 
     float side = gc_bsdf_side(wo);
     float3 wo_up = gc_bsdf_flip(wo, side);
     if (!(wo_up.z > 0.0f)) return gc_bsdf_no_sample();
 
     float3 wi_up;
-    if (m.type == GC_MAT_PHONG || m.type == GC_MAT_MIRROR) {
+    if (gc_material_is(m, GC_MAT_PHONG) || gc_material_is(m, GC_MAT_MIRROR)) {
         float3 ks = GC_XYZ(m.specular);
         float p_spec = gc_bsdf_specular_prob(albedo, ks);
         if (p_spec < 0.0f) return gc_bsdf_no_sample();
         if (u0 < p_spec) {
-            if (m.type == GC_MAT_MIRROR) {
+            if (gc_material_is(m, GC_MAT_MIRROR)) {
                 /* Perfect mirror, reflectance ks, no Fresnel (MTL illum 3/5): delta
                  * coefficient ks / cos, chosen with probability p_spec. */
                 GcBsdfSample s;
@@ -448,7 +452,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
         } else {
             wi_up = gc_sample_cosine_hemisphere(u1, u2);
         }
-    } else if (m.type == GC_MAT_PBR) {
+    } else if (gc_material_is(m, GC_MAT_PBR)) {
         const float3 p = gc_pbr_lobe_probs(m, albedo, wo_up.z);
         if (u0 < p.x) {
             const float3 wm = gc_ggx_sample_visible_normal(wo_up, gc_pbr_alpha(m), u1, u2);

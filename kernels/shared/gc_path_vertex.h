@@ -81,7 +81,7 @@ GC_FUNC float3 gc_shade_albedo(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 {
     GC_SHADE_UNUSED();
     float3 albedo = GC_XYZ(m.albedo);
-    if (m.albedo_texture != GC_INVALID)
+    if (GC_USE_TEXTURES != 0 && m.albedo_texture != GC_INVALID)
         albedo *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.albedo_texture), uv.x, uv.y));
     return albedo;
 }
@@ -91,7 +91,7 @@ GC_FUNC float4 gc_shade_base_color(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 {
     GC_SHADE_UNUSED();
     float4 c = m.albedo;
-    if (m.albedo_texture != GC_INVALID)
+    if (GC_USE_TEXTURES != 0 && m.albedo_texture != GC_INVALID)
         c *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.albedo_texture), uv.x, uv.y);
     return c;
 }
@@ -103,7 +103,7 @@ GC_FUNC float3 gc_shade_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 {
     GC_SHADE_UNUSED();
     float3 e = GC_XYZ(m.emission);
-    if (m.emission_texture != GC_INVALID)
+    if (GC_USE_TEXTURES != 0 && m.emission_texture != GC_INVALID)
         e *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.emission_texture), uv.x, uv.y));
     return e;
 }
@@ -113,7 +113,7 @@ GC_FUNC float3 gc_shade_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 {
     GC_SHADE_UNUSED();
-    if (m.metallic_roughness_texture != GC_INVALID) {
+    if (GC_USE_TEXTURES != 0 && m.metallic_roughness_texture != GC_INVALID) {
         const float4 mr = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.metallic_roughness_texture), uv.x, uv.y);
         m.pbr.x *= mr.z;
         m.pbr.y *= mr.y;
@@ -130,7 +130,7 @@ GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs 
                                float2 uv)
 {
     GC_SHADE_UNUSED();
-    if (m.normal_texture == GC_INVALID) return ns;
+    if (GC_USE_NORMAL_MAPS == 0 || m.normal_texture == GC_INVALID) return ns;
     const float4 tangent = gc_triangle_tangent(a, bary.x, bary.y);
     const float3 t_tri = GC_XYZ(tangent);
     const float3 t_raw = t_tri - ns * dot(ns, t_tri);
@@ -159,7 +159,7 @@ GC_FUNC float2 gc_triangle_uv(GcTriangleAttribs a, float3 b)
  * (u uniform in [0, 1)). MASK is decided in traversal (gc_alpha.h), not here. */
 GC_FUNC bool gc_alpha_transparent(GcMaterial m, float alpha, float u)
 {
-    if ((m.flags & GC_MATF_ALPHA_BLEND) != 0u) return u >= alpha;
+    if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) return u >= alpha;
     return false;
 }
 
@@ -308,7 +308,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
      * gives its emitter or environment hit full weight instead of an MIS weight whose
      * complement NEE never supplies: unbiased, only noisier behind BLEND surfaces. MASK
      * cut-outs cost no segment and are seen through by shadow rays. */
-    if ((m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
+    if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
         const float4 ra = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
         if (gc_alpha_transparent(m, base.w, ra.x)) {
             path.radiance = gc_with_w(L, path.radiance.w);
@@ -377,7 +377,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
      * roulette only, so a path inside glass is not killed for a factor that leaving the glass
      * will restore (Mitsuba's path integrator and pbrt-v4 do the same). */
     float eta_scale = path.radiance.w;
-    if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && m.type == GC_MAT_DIELECTRIC) {
+    if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && gc_material_is(m, GC_MAT_DIELECTRIC)) {
         const float eta = gc_dielectric_eta(m, wo);
         eta_scale *= eta * eta;
     }

@@ -13,6 +13,7 @@
 #define GC_TYPES_H
 
 #include "gc_platform.h"
+#include "gc_features.h"
 
 GC_NAMESPACE_BEGIN
 

@@ -1,0 +1,41 @@
+// The scene features an OpenCL program is built for (kernels/shared/gc_features.h): each
+// program is compiled without the code for features its scene lacks — textures, normal maps,
+// alpha MASK and BLEND, point lights, an environment map, and each material type — which
+// leaves every image bit unchanged and makes PoCL's cold build and the CPU path loop cheaper.
+//
+//     const KernelFeatures features = kernel_features(materials, point_lights, has_env_map);
+//     cl::Program program(context, "megakernel.cl", program_options(features));
+//
+// GEOCOLD_KERNEL_FEATURES=all builds the full program instead (for A/B comparisons and the
+// tests that check the bits agree); "scene" is the default.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "gc_types.h"
+
+namespace gc {
+
+struct KernelFeatures {
+    bool textures = true;
+    bool normal_maps = true;
+    bool alpha_mask = true;
+    bool alpha_blend = true;
+    bool point_lights = true;
+    bool env_map = true;
+    std::uint32_t material_types = 0xffffffffu;  // bit t: some material has type t (GC_MAT_*)
+
+    bool operator==(const KernelFeatures&) const = default;
+};
+
+// What the scene with these device materials and lights uses; every feature on when
+// GEOCOLD_KERNEL_FEATURES=all. Throws UsageError for a value other than "all" or "scene".
+KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::size_t point_lights, bool env_map);
+
+// "-D GC_USE_TEXTURES=0 ..." for the features that are off (and GC_USE_MATERIALS when not
+// every type is present); "" for the full program.
+std::string program_options(const KernelFeatures& features);
+
+}  // namespace gc

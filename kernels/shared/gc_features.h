@@ -1,0 +1,44 @@
+/*
+ * gc_features.h — the scene features a program is compiled for.
+ *
+ * The host builds each OpenCL program for the scene it renders (host/render/kernel_features.h):
+ * -D GC_USE_TEXTURES=0 when no material samples a texture, and so on for the features below,
+ * and GC_USE_MATERIALS as a bitmask of the GC_MAT_* types present. Code guarded by a feature
+ * that is off is never reached by that scene's data, so removing it changes no bit of the
+ * image (tests/validation/determinism_test.cpp compares against the full program); what it
+ * changes is the size of the program: PoCL compiles less (the Cornell box's cold build went
+ * from 3.87 to 2.72 s here) and the path loop runs in fewer registers (Cycles specialises its
+ * kernels by scene features for the same two reasons).
+ *
+ * Without the defines (the host's C++ use of these headers, the Vulkan reference, a program
+ * built by hand) every feature is on. Shared dialect (gc_platform.h).
+ */
+#ifndef GC_FEATURES_H
+#define GC_FEATURES_H
+
+#ifndef GC_USE_TEXTURES
+#define GC_USE_TEXTURES 1 /* any material samples a texture (gc_texture.h) */
+#endif
+#ifndef GC_USE_NORMAL_MAPS
+#define GC_USE_NORMAL_MAPS 1 /* any material has a normal texture */
+#endif
+#ifndef GC_USE_ALPHA_MASK
+#define GC_USE_ALPHA_MASK 1 /* any triangle is alpha tested in traversal (GC_TRI_ALPHA_TESTED) */
+#endif
+#ifndef GC_USE_ALPHA_BLEND
+#define GC_USE_ALPHA_BLEND 1 /* any material is glTF alphaMode BLEND */
+#endif
+#ifndef GC_USE_POINT_LIGHTS
+#define GC_USE_POINT_LIGHTS 1
+#endif
+#ifndef GC_USE_ENV_MAP
+#define GC_USE_ENV_MAP 1 /* an environment map (a constant environment needs no code) */
+#endif
+#ifndef GC_USE_MATERIALS
+#define GC_USE_MATERIALS 0xffffffffu /* bit t: some material has GcMaterial.type t */
+#endif
+
+/* Whether material type `type` (a GC_MAT_* constant) may occur. */
+#define gc_uses_material(type) ((GC_USE_MATERIALS & (1u << (type))) != 0u)
+
+#endif /* GC_FEATURES_H */
