@@ -226,7 +226,8 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         return ls;
     }
 #if GC_HAS_LIGHT_BUFFERS
-    if (group == 1u) {
+    /* The constants drop each group's code from programs built for scenes without it. */
+    if (GC_POINT_LIGHT_CODE != 0 && group == 1u) {
         uint i = gc_uint(u * gc_float(params.num_point_lights));
         if (i >= params.num_point_lights) i = params.num_point_lights - 1u;
         const GcPointLight light = GC_POINT_LIGHT(i);
@@ -241,7 +242,7 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         ls.kind = GC_LIGHT_POINT;
         return ls;
     }
-    {
+    if (GC_ENV_MAP_CODE != 0) {
         /* Environment map: a row from the marginal cdf, a column from that row's conditional
          * cdf, continuous offsets inside the texel (pbrt's PiecewiseConstant2D). */
         const uint w = params.env_width;
