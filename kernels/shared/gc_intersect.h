@@ -141,19 +141,18 @@ GC_FUNC GcRayPre gc_ray_precompute(GcRay ray)
     /* w: the dominant axis's |1/d|, the smallest, for the box test's absolute margin. */
     r.inv_dir = make_float4(inv.x, inv.y, inv.z, fmin(fabs(inv.x), fmin(fabs(inv.y), fabs(inv.z))));
 
-    /* Largest |d| component becomes z; the other two follow cyclically, swapped when d.z is
-     * negative so the sheared triangle keeps its winding (Woop et al. 2013, section 3). */
+    /* Largest |d| component becomes z; the other two follow cyclically. Woop et al. 2013
+     * (section 3) also swap x and y when d.z is negative, to keep the sheared triangle's
+     * winding; the test here accepts both windings, and the swap would only negate the edge
+     * functions, det and tz together, so t, u and v are the same bits without it. Leaving it
+     * out makes kx and ky functions of kz alone, which the wide leaves specialise on
+     * (gc_traverse4.h). */
     float ax = fabs(d.x);
     float ay = fabs(d.y);
     float az = fabs(d.z);
     uint kz = (ax > ay) ? ((ax > az) ? 0u : 2u) : ((ay > az) ? 1u : 2u);
     uint kx = kz == 2u ? 0u : kz + 1u;
     uint ky = kx == 2u ? 0u : kx + 1u;
-    if (gc_float3_get(d, kz) < 0.0f) {
-        uint tmp = kx;
-        kx = ky;
-        ky = tmp;
-    }
     r.kx = kx;
     r.ky = ky;
     r.kz = kz;

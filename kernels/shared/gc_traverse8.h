@@ -123,8 +123,9 @@ GC_WIDE_TRACE_BEGIN
                 GC_BVH8_PUSH(6, n.child1.z)
                 GC_BVH8_PUSH(7, n.child1.w)
             }
-            if (sp > base + 1u) {
-                /* Insertion sort of the pushed children, farthest deepest, nearest on top. */
+            if (!any_hit && sp > base + 1u) {
+                /* Insertion sort of the pushed children, farthest deepest, nearest on top (an
+                 * any-hit query stops at the first hit wherever it is: no order to keep). */
                 for (uint i = base + 1u; i < sp; ++i) {
                     float ke = stack_entry[i];
                     uint kr = stack_ref[i];
@@ -155,6 +156,7 @@ GC_WIDE_TRACE_BEGIN
 #undef GC_WIDE_TRACE_SETUP
 #undef GC_WIDE_TRACE_BEGIN
 #undef GC_WIDE_LEAF
+#undef GC_WIDE_TRIANGLE4
 #undef GC_WIDE_POP
 #undef GC_BVH4_SORT2
 #undef GC_BVH4_PUSH
