@@ -26,23 +26,13 @@ Scene load_cornell(const char* file)
     return load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box" / file);
 }
 
-// The references' view of the Cornell boxes (../shared/refs/*.json).
-Camera cornell_camera()
-{
-    Camera camera;
-    camera.look_from = Point3(0, 1, 3.9f);
-    camera.look_at = Point3(0, 1, 0);
-    camera.vfov_degrees = 39.3077f;
-    return camera;
-}
-
 class DeterminismTest : public cl::test::DeviceTest {};
 
 TEST_F(DeterminismTest, SameRenderTwiceIsBitIdentical)
 {
     // The mirror box: diffuse, mirror, NEE and Russian roulette all on the paths.
     const Scene scene = load_cornell("CornellBox-Mirror.obj");
-    const Camera camera = cornell_camera();
+    const Camera camera = validation::cornell_camera();
     RenderSettings s;
     s.integrator = IntegratorKind::Path;
     s.width = 48;
@@ -72,7 +62,7 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     // render_samples); accumulate.cl sums them in sample order, so the films must equal
     // one-sample-per-pass rendering bit for bit, whatever the grouping.
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
-    const Camera camera = cornell_camera();
+    const Camera camera = validation::cornell_camera();
     RenderSettings s;
     s.integrator = IntegratorKind::Path;
     s.width = 40;
@@ -106,7 +96,7 @@ TEST_F(DeterminismTest, MegakernelEqualsWavefront)
     // the same calls per path with the same random numbers: same bits on one device. The glass
     // sphere box exercises refraction, Russian roulette and NEE.
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
-    const Camera camera = cornell_camera();
+    const Camera camera = validation::cornell_camera();
     RenderSettings s;
     s.integrator = IntegratorKind::Path;
     s.width = 40;

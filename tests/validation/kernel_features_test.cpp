@@ -38,15 +38,6 @@ Output render_with(const cl::Context& context, const Scene& scene, const Camera&
     return {renderer.film(), renderer.program().options()};
 }
 
-Camera cornell_camera()
-{
-    Camera camera;
-    camera.look_from = Point3(0, 1, 3.9f);
-    camera.look_at = Point3(0, 1, 0);
-    camera.vfov_degrees = 39.3077f;
-    return camera;
-}
-
 Camera box_camera()
 {
     Camera camera;
@@ -90,7 +81,7 @@ protected:
 TEST_F(KernelFeaturesTest, GlassBox)
 {
     const Scene scene = load_scene(fs::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj");
-    expect_same_bits("glass sphere box", scene, cornell_camera(), small_path_settings());
+    expect_same_bits("glass sphere box", scene, validation::cornell_camera(), small_path_settings());
 }
 
 TEST_F(KernelFeaturesTest, MirrorBoxWithPointLightAndEnvironmentMap)
@@ -105,7 +96,7 @@ TEST_F(KernelFeaturesTest, MirrorBoxWithPointLightAndEnvironmentMap)
     write_image(map_path, map, {});
     RenderSettings s = small_path_settings();
     s.env_map_path = map_path.string();
-    expect_same_bits("mirror box + point light + environment map", scene, cornell_camera(), s);
+    expect_same_bits("mirror box + point light + environment map", scene, validation::cornell_camera(), s);
     fs::remove(map_path);
 }
 

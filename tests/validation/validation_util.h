@@ -37,6 +37,16 @@ inline Rendered render(const cl::Context& context, const Scene& scene, const Cam
     return out;
 }
 
+// The references' view of the Cornell boxes (../shared/refs/*.json).
+inline Camera cornell_camera()
+{
+    Camera camera;
+    camera.look_from = Point3(0, 1, 3.9f);
+    camera.look_at = Point3(0, 1, 0);
+    camera.vfov_degrees = 39.3077f;
+    return camera;
+}
+
 // Failing comparisons leave their images beside the test binary (GC_TEST_OUTPUT_DIR), where
 // CI artifacts and a developer both find them.
 inline std::filesystem::path failure_path(const std::string& file_name)
