@@ -261,6 +261,9 @@ Environment:
   GEOCOLD_BVH_WIDTH        2|4|8: the BVH layout traversed (default: 8 on CPUs with AVX,
                            where one ray tests 8 boxes at once, else 4; 2 on GPUs; same
                            image either way)
+  GEOCOLD_KERNEL_FEATURES  scene|all: compile the kernels for the scene's features only
+                           (default: scene; smaller, faster programs) or all of them (same
+                           image either way)
   GEOCOLD_IMAGE_MODULE     the OpenImageIO module, loaded only for formats that are not
                            built in (.exr, .hdr, .tif, reading .png; .pfm/.ppm and writing
                            .png need none). Default: geocold-image-oiio.so beside
