@@ -1,19 +1,13 @@
 #include "host/render/device_bvh.h"
 
-#include <cstdlib>
-
 #include "host/bvh/widen.h"
-#include "host/util/error.h"
+#include "host/util/env_choice.h"
 
 namespace gc {
 BvhLayout bvh_layout_for(const cl::DeviceInfo& device)
 {
-    if (const char* env = std::getenv("GEOCOLD_BVH_WIDTH"); env && *env) {
-        const std::string width(env);
-        if (width != "2" && width != "4" && width != "8")
-            throw UsageError("GEOCOLD_BVH_WIDTH must be 2, 4 or 8, not '" + width + "'");
-        return width == "8" ? BvhLayout::Wide8 : (width == "4" ? BvhLayout::Wide : BvhLayout::Binary);
-    }
+    if (const auto width = env_choice("GEOCOLD_BVH_WIDTH", {"2", "4", "8"}, "2, 4 or 8"))
+        return *width == "8" ? BvhLayout::Wide8 : (*width == "4" ? BvhLayout::Wide : BvhLayout::Binary);
     // A GPU runs a warp of rays in lock step, and a float4 there is four scalar instructions:
     // the BVH2 measured faster (H200: dragon diffuse 1229 vs 1040 Mrays/s with the BVH4).
     // CPUs gain from the wide tests: BVH4 over BVH2 1.2-1.6x, and BVH8 over BVH4 where the

@@ -1,20 +1,16 @@
 #include "host/render/kernel_features.h"
 
-#include <cstdlib>
+#include <utility>
 
-#include "host/util/error.h"
+#include "host/util/env_choice.h"
 
 namespace gc {
 namespace {
 
 bool specialise_for_scene()
 {
-    const char* env = std::getenv("GEOCOLD_KERNEL_FEATURES");
-    if (!env || !*env) return true;
-    const std::string value(env);
-    if (value != "all" && value != "scene")
-        throw UsageError("GEOCOLD_KERNEL_FEATURES must be 'scene' or 'all', not '" + value + "'");
-    return value == "scene";
+    const auto value = env_choice("GEOCOLD_KERNEL_FEATURES", {"scene", "all"}, "'scene' or 'all'");
+    return !value || *value == "scene";
 }
 
 bool has_texture(const dev::GcMaterial& m)
@@ -23,13 +19,11 @@ bool has_texture(const dev::GcMaterial& m)
            m.normal_texture != GC_INVALID || m.emission_texture != GC_INVALID;
 }
 
-void add_define(std::string& options, const char* name, bool on)
+// Appends "-D name=value", space-separated from what is there.
+void add_define(std::string& options, const char* name, const std::string& value)
 {
-    if (on) return;
     if (!options.empty()) options += ' ';
-    options += "-D ";
-    options += name;
-    options += "=0";
+    options += std::string("-D ") + name + "=" + value;
 }
 
 }  // namespace
@@ -58,16 +52,15 @@ KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::
 std::string program_options(const KernelFeatures& features)
 {
     std::string options;
-    add_define(options, "GC_USE_TEXTURES", features.textures);
-    add_define(options, "GC_USE_NORMAL_MAPS", features.normal_maps);
-    add_define(options, "GC_USE_ALPHA_MASK", features.alpha_mask);
-    add_define(options, "GC_USE_ALPHA_BLEND", features.alpha_blend);
-    add_define(options, "GC_USE_POINT_LIGHTS", features.point_lights);
-    add_define(options, "GC_USE_ENV_MAP", features.env_map);
-    if (features.material_types != 0xffffffffu) {
-        if (!options.empty()) options += ' ';
-        options += "-D GC_USE_MATERIALS=" + std::to_string(features.material_types) + "u";
-    }
+    const std::pair<const char*, bool> switches[] = {
+        {"GC_USE_TEXTURES", features.textures},         {"GC_USE_NORMAL_MAPS", features.normal_maps},
+        {"GC_USE_ALPHA_MASK", features.alpha_mask},     {"GC_USE_ALPHA_BLEND", features.alpha_blend},
+        {"GC_USE_POINT_LIGHTS", features.point_lights}, {"GC_USE_ENV_MAP", features.env_map},
+    };
+    for (const auto& [name, on] : switches)
+        if (!on) add_define(options, name, "0");
+    if (features.material_types != 0xffffffffu)
+        add_define(options, "GC_USE_MATERIALS", std::to_string(features.material_types) + "u");
     return options;
 }
 

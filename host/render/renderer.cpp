@@ -7,6 +7,7 @@
 
 #include "host/render/environment.h"
 #include "host/render/scene_convert.h"
+#include "host/util/env_choice.h"
 #include "host/util/error.h"
 
 namespace gc {
@@ -37,12 +38,8 @@ std::size_t megakernel_local_size(const cl::Context& context)
 bool path_megakernel_for(const cl::DeviceInfo& device)
 {
     // GEOCOLD_PATH_KERNEL=wavefront|megakernel overrides the choice (benchmarking, A/B).
-    if (const char* env = std::getenv("GEOCOLD_PATH_KERNEL"); env && *env) {
-        const std::string form(env);
-        if (form != "megakernel" && form != "wavefront")
-            throw UsageError("GEOCOLD_PATH_KERNEL must be 'wavefront' or 'megakernel', not '" + form + "'");
-        return form == "megakernel";
-    }
+    if (const auto form = env_choice("GEOCOLD_PATH_KERNEL", {"wavefront", "megakernel"}, "'wavefront' or 'megakernel'"))
+        return *form == "megakernel";
     return !device.is_gpu;
 }
 

@@ -142,6 +142,11 @@ TEST(Cli, BadBvhWidthVariableIsAUsageError)
     expect_env_usage_error("GEOCOLD_BVH_WIDTH", "3", "GEOCOLD_BVH_WIDTH must be 2, 4 or 8, not '3'");
 }
 
+TEST(Cli, BadKernelFeaturesVariableIsAUsageError)
+{
+    expect_env_usage_error("GEOCOLD_KERNEL_FEATURES", "none", "GEOCOLD_KERNEL_FEATURES must be 'scene' or 'all', not 'none'");
+}
+
 // A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the
 // write fails after the render, and the previous image must survive byte for byte.
 TEST(Cli, FullDiskKeepsThePreviousImage)
