@@ -184,8 +184,8 @@ template <class Node, std::uint32_t Width>
 WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
 {
     WideBvhOf<Node> out;
-    out.nodes.push_back(empty_node<Node, Width>());
     if (bvh.nodes.empty() || bvh.scene_triangle_count() == 0) {
+        out.nodes.push_back(empty_node<Node, Width>());
         out.blocks.push_back(empty_block());
         return out;
     }
@@ -195,12 +195,12 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
     Widener<Node, Width> widener(view, out);
     if (view.becomes_leaf(0)) {
         // A root that is one leaf still needs an inner root: traversal starts at node 0.
+        out.nodes.push_back(empty_node<Node, Width>());
         const std::uint32_t ref = widener.leaf(0);
         set_slot(out.nodes[0], 0, bvh.nodes[0], ref);
         return out;
     }
-    out.nodes.clear();
-    widener.inner(0);
+    widener.inner(0);  // emits the root first, as node 0
     return out;
 }
 
@@ -244,16 +244,6 @@ WideBvh widen(const FlatBvh& bvh)
 Wide8Bvh widen8(const FlatBvh& bvh)
 {
     return widen_to<dev::GcBvh8Node, 8>(bvh);
-}
-
-std::size_t wide_bvh_bytes(const WideBvh& bvh)
-{
-    return bvh.nodes.size() * sizeof(dev::GcBvh4Node) + bvh.blocks.size() * sizeof(dev::GcTriangle4);
-}
-
-std::size_t wide_bvh_bytes(const Wide8Bvh& bvh)
-{
-    return bvh.nodes.size() * sizeof(dev::GcBvh8Node) + bvh.blocks.size() * sizeof(dev::GcTriangle4);
 }
 
 }  // namespace gc

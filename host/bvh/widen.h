@@ -36,7 +36,10 @@ WideBvh widen(const FlatBvh& bvh);
 Wide8Bvh widen8(const FlatBvh& bvh);  // the same rules with eight children per node
 
 // Bytes the layout occupies on a device.
-std::size_t wide_bvh_bytes(const WideBvh& bvh);
-std::size_t wide_bvh_bytes(const Wide8Bvh& bvh);
+template <class Node>
+std::size_t wide_bvh_bytes(const WideBvhOf<Node>& bvh)
+{
+    return bvh.nodes.size() * sizeof(Node) + bvh.blocks.size() * sizeof(dev::GcTriangle4);
+}
 
 }  // namespace gc
