@@ -1,6 +1,7 @@
 /* generate.cl — camera rays for every path of the pass, fresh path state, all queued. A pass
  * holds params.samples_in_pass consecutive samples of the batch's pixels: slot
- * s * pixel_count + p is sample sample_index + s of pixel pixel_offset + p. */
+ * s * pixel_count + p is sample sample_index + s of pixel pixel_offset + p. Every slot is
+ * queued, so the queue is the identity and its count is the pass's size: no atomics. */
 #include "gc_camera.h"
 #include "gc_path.h"
 #include "gc_rng.h"
@@ -19,5 +20,6 @@ __kernel void generate(const GcRenderParams params,
     rays[slot] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
                                pixel / params.width, jitter.x, jitter.y);
     paths[slot] = gc_path_start(pixel, sample);
-    ray_queue[atomic_inc(&counters[GC_COUNTER_RAYS_A])] = slot;
+    ray_queue[slot] = slot;
+    if (slot == 0u) counters[GC_COUNTER_RAYS_A] = gc_pass_paths(params);
 }

@@ -1,9 +1,11 @@
 /*
  * shade.cl — one path vertex per queued path: gc_shade_vertex (kernels/shared/
  * gc_path_vertex.h, shared with the Vulkan compute reference) does the shading; this kernel
- * only moves its result into the wavefront's queues.
+ * only moves its result into the wavefront's queues, one global atomic per work-group and
+ * queue (gc_queue.h). Work-items past the queue's end stay for the group's barriers.
  */
 #include "gc_path_vertex.h"
+#include "gc_queue.h"
 
 __kernel void shade(const GcRenderParams params,
                     GC_SHADE_PARAMS,
@@ -17,18 +19,26 @@ __kernel void shade(const GcRenderParams params,
                     const uint counter_in,
                     const uint counter_out)
 {
+    __local uint group_counts[2];
     const uint q = get_global_id(0);
-    if (q >= counters[counter_in] || q >= gc_pass_paths(params)) return;
-    const uint slot = queue_in[q];
-    const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, paths[slot], rays[slot], hits[slot]);
-    paths[slot] = res.path;
-    if ((res.flags & GC_VERTEX_SHADOW) != 0u) {
-        GcShadowRay sr = res.shadow;
-        sr.slot = slot;
-        shadow_rays[atomic_inc(&counters[GC_COUNTER_SHADOW])] = sr;
+    const bool queued = q < counters[counter_in] && q < gc_pass_paths(params);
+    uint slot = 0u;
+    uint flags = 0u;
+    GcShadowRay shadow;
+    if (queued) {
+        slot = queue_in[q];
+        const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, paths[slot], rays[slot], hits[slot]);
+        paths[slot] = res.path;
+        flags = res.flags;
+        shadow = res.shadow;
+        shadow.slot = slot;
+        /* The extend stage has read this slot's ray already; nobody else touches it. */
+        if ((flags & GC_VERTEX_CONTINUE) != 0u) rays[slot] = res.next;
     }
-    if ((res.flags & GC_VERTEX_CONTINUE) != 0u) {
-        rays[slot] = res.next;
-        queue_out[atomic_inc(&counters[counter_out])] = slot;
-    }
+    const bool shadow_push = (flags & GC_VERTEX_SHADOW) != 0u;
+    const bool continue_push = (flags & GC_VERTEX_CONTINUE) != 0u;
+    const GcQueueSlots at = gc_queue_reserve2(&counters[GC_COUNTER_SHADOW], shadow_push,
+                                              &counters[counter_out], continue_push, group_counts);
+    if (shadow_push) shadow_rays[at.first] = shadow;
+    if (continue_push) queue_out[at.second] = slot;
 }

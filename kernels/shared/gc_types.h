@@ -276,7 +276,7 @@ GC_STRUCT(GcShadowRay) {
 } GC_STRUCT_END(GcShadowRay)
 
 /* Queue counters, one uint each in a small buffer: two ping-pong ray queues and the
- * shadow queue. Pushed with atomic_inc; read only by the kernels. */
+ * shadow queue. Pushed with one atomic_add per work-group (gc_queue.h); read only by the kernels. */
 #define GC_COUNTER_RAYS_A 0u
 #define GC_COUNTER_RAYS_B 1u
 #define GC_COUNTER_SHADOW 2u
