@@ -2,6 +2,7 @@
 // brute-force loop over all triangles, and the counter-based RNG draws identical numbers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -224,6 +225,56 @@ TEST(DeviceSampling, TrigAndHemisphereEqualHost)
         std::printf("[sampling] %s: %u inputs, %zu differ from the host (bit for bit)\n", device.device_name.c_str(),
                     count, differing);
         EXPECT_EQ(differing, 0u) << device.device_name;
+    }
+}
+
+// gc_queue.h's work-group reservation (used by the wavefront's shade stage): for several
+// counts and group sizes, including partial last groups and groups with nothing to push, each
+// queue gets every pushing work-item exactly once and its counter says how many.
+TEST(DeviceQueue, WorkGroupReservationPushesEachItemOnce)
+{
+    const std::vector<cl::DeviceInfo> devices = devices_or_skip();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    for (const cl::DeviceInfo& device : devices) {
+        const cl::Context context(device);
+        const cl::Program program(context, "queue_probe.cl");
+        cl::Kernel kernel = program.kernel("queue_probe");
+        for (const std::uint32_t count : {1u, 2u, 127u, 1000u, 4099u}) {
+            for (const std::size_t local : {std::size_t{1}, std::size_t{16}, std::size_t{64}}) {
+                auto queue0 = cl::Buffer<std::uint32_t>::create(context, count, CL_MEM_READ_WRITE, "queue 0");
+                auto queue1 = cl::Buffer<std::uint32_t>::create(context, count, CL_MEM_READ_WRITE, "queue 1");
+                auto counters = cl::Buffer<std::uint32_t>::create(context, 2, CL_MEM_READ_WRITE, "queue counters");
+                const std::vector<std::uint32_t> sentinel(count, 0xffffffffu);
+                queue0.write(sentinel);
+                queue1.write(sentinel);
+                counters.write(std::vector<std::uint32_t>{0u, 0u});
+                kernel.set_args(queue0, queue1, counters, count);
+                kernel.launch(context, count, local);
+                context.finish();
+                std::vector<std::uint32_t> got0(count), got1(count), counts(2);
+                queue0.read(got0);
+                queue1.read(got1);
+                counters.read(counts);
+                const auto check = [&](const std::vector<std::uint32_t>& got, std::uint32_t n, std::uint32_t step) {
+                    const std::uint32_t expected = (count + step - 1) / step;  // items 0, step, 2 step, ...
+                    EXPECT_EQ(n, expected) << device.device_name << ": count " << count << ", local " << local;
+                    std::vector<std::uint32_t> seen(count, 0);
+                    std::size_t wrong = 0;
+                    for (std::uint32_t k = 0; k < std::min(n, count); ++k) {
+                        if (got[k] >= count || got[k] % step != 0) ++wrong;
+                        else ++seen[got[k]];
+                    }
+                    for (std::uint32_t i = 0; i < count; i += step) wrong += seen[i] == 1 ? 0 : 1;
+                    EXPECT_EQ(wrong, 0u) << device.device_name << ": count " << count << ", local " << local
+                                         << ", every " << step;
+                    return wrong;
+                };
+                const std::size_t wrong = check(got0, counts[0], 3) + check(got1, counts[1], 5);
+                if (count == 4099u && local == 64)
+                    std::printf("[queue] %s: %u items in groups of %zu: %u and %u pushed, %zu misplaced\n",
+                                device.device_name.c_str(), count, local, counts[0], counts[1], wrong);
+            }
+        }
     }
 }
 
