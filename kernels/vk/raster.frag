@@ -4,10 +4,14 @@
  * rasteriser's perspective-correct barycentrics, so normals and texture lookups follow the
  * ray tracer's rules. Depth is the distance along the pixel-centre camera ray to the
  * triangle's plane (what the ray tracer's depth AOV reports), not the NDC depth.
+ * A glTF alphaMode MASK fragment whose alpha is below the cutoff is discarded, as the ray
+ * tracer's traversal skips that hit (gc_alpha_solid, gc_alpha.h), so the surface behind it
+ * is drawn instead.
  */
 #version 450
 #include "scene_bindings.glsl"
 #include "gc_aov.h"
+#include "gc_alpha.h"
 
 layout(location = 0) in vec3 v_bary;
 layout(location = 1) flat in uint v_prim;
@@ -35,6 +39,7 @@ void main()
     hit.prim = prim;
     const GcSurface s = gc_surface_at(attrib_data[prim], ray, hit);
     const GcMaterial m = material_data[s.material];
+    if ((m.flags & GC_MATF_ALPHA_MASK) != 0u && !gc_alpha_solid(GC_ALPHA_ARGS, prim, hit.u, hit.v)) discard;
     const vec3 albedo = gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
 
     o_preview = vec4(gc_aov_preview(albedo, s.ns, dir, gc_aov_emission(GC_SHADE_ARGS, m, s.uv)), 1.0f);
