@@ -6,26 +6,28 @@
  * put 44 % of the CPU shade kernel on the two pushes' contended cache line (Cornell box,
  * 2 cores). Here the work-items of a group count their pushes in local memory (a cache line
  * only the core running the group touches), one work-item reserves the group's range with a
- * single global atomic_add, and each work-item writes at base + its rank in the group. GPUs
- * gain the same way: one global atomic per group instead of one per warp.
+ * single global atomic_add, and each work-item writes at base + its rank in the group. On
+ * NVIDIA it measured neutral (its compiler already merges same-address atomics per warp).
  *
  * The ranks within a group follow local atomics, so queue order is not fixed; the image does
  * not depend on it (see wavefront.cl).
  *
  * Every work-item of the group must call gc_queue_reserve2 (it has barriers): kernels keep
  * their idle work-items alive with push = false instead of returning early. The local
- * counters must be declared at kernel scope (OpenCL C) and passed in.
+ * counters must be declared at kernel scope (OpenCL C) and passed in; call it once per
+ * kernel (a second call's reset of the counters could overtake the first call's last reads).
  */
 #ifndef GC_QUEUE_H
 #define GC_QUEUE_H
 
-/* One work-group's share of two queues: counts[q] counts the group's pushes, then holds
- * the base index that the global atomic returned. */
+/* Where this work-item writes in each queue. */
 typedef struct {
     uint first;  /* index in queue 0 to write, valid when push0 */
     uint second; /* index in queue 1 to write, valid when push1 */
 } GcQueueSlots;
 
+/* The group's share of two queues. counts[q] first counts the group's pushes onto queue q,
+ * then holds the base index that the global atomic returned. */
 static inline GcQueueSlots gc_queue_reserve2(__global uint* counter0, bool push0,
                                              __global uint* counter1, bool push1,
                                              __local uint* counts /* [2] */)
