@@ -618,8 +618,18 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
     Builder builder(refs, tree, options, pool);
     builder.build_root(box, cbox);
 
+    // The leaves' triangle order, in the same chunks as the bounds pass.
     tree.prim_indices.resize(count);
-    for (std::size_t i = 0; i < count; ++i) tree.prim_indices[i] = prim_of(refs[i]);
+    {
+        auto copy_chunk = [&](std::size_t c) {
+            const std::size_t end = std::min<std::size_t>(count, (c + 1) * kPrimChunk);
+            for (std::size_t i = c * kPrimChunk; i < end; ++i) tree.prim_indices[i] = prim_of(refs[i]);
+        };
+        TaskGroup group;
+        for (std::size_t c = 1; c < chunks; ++c) pool.spawn(group, [&copy_chunk, c] { copy_chunk(c); });
+        copy_chunk(0);
+        pool.wait(group);
+    }
     return tree;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <exception>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -42,9 +43,12 @@ FlatBvh empty_bvh()
     return flat;
 }
 
-// Triangle i of the flat layout is scene triangle prim_indices[i] (see flatten()). Each is a
-// pure function of the scene, so chunks on several threads give the same bytes as one loop.
-void make_triangles(const BvhTree& tree, const Scene& scene, std::vector<dev::GcTriangle>& out)
+constexpr std::size_t kTriangleChunk = 65536; // below this a thread costs more than it saves
+
+// Triangle i of the flat layout is scene triangle prim_indices[i] (see flatten()), made on up
+// to `max_threads` threads. Each is a pure function of the scene, so chunks on several threads
+// give the same bytes as one loop.
+void make_triangles(const BvhTree& tree, const Scene& scene, std::vector<dev::GcTriangle>& out, std::size_t max_threads)
 {
     const std::size_t n = tree.prim_indices.size();
     out.resize(n);
@@ -55,13 +59,48 @@ void make_triangles(const BvhTree& tree, const Scene& scene, std::vector<dev::Gc
             out[i] = make_triangle(scene.vertex(prim, 0), scene.vertex(prim, 1), scene.vertex(prim, 2), prim, flags);
         }
     };
-    constexpr std::size_t kChunk = 65536; // below this a thread costs more than it saves
     const std::size_t threads =
-        std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), (n + kChunk - 1) / kChunk);
+        std::min<std::size_t>(std::max<std::size_t>(1, max_threads), (n + kTriangleChunk - 1) / kTriangleChunk);
     std::vector<std::thread> workers;
     for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(fill, n * t / threads, n * (t + 1) / threads);
     fill(0, n / threads);
     for (std::thread& w : workers) w.join();
+}
+
+// The nodes in depth-first order: a pre-order walk with an explicit stack of (tree node,
+// output slot). An inner node reserves its children's pair when it is visited; pushing right
+// before left makes the left subtree complete before the right child's pair is reserved. The
+// builder lays leaves' ranges of prim_indices out in the same order (a left subtree's range
+// before its right sibling's), so the triangles are prim_indices' order, made apart from this
+// walk; the walk checks that promise leaf by leaf.
+std::vector<dev::GcBvhNode> flatten_nodes(const BvhTree& tree)
+{
+    std::vector<dev::GcBvhNode> nodes;
+    nodes.reserve(tree.nodes.size());
+    nodes.emplace_back();
+    std::uint32_t next_triangle = 0;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;
+    stack.emplace_back(0u, 0u);
+    while (!stack.empty()) {
+        const auto [src, dst] = stack.back();
+        stack.pop_back();
+        const BvhBuildNode& node = tree.nodes[src];
+        if (node.count > 0) {
+            if (node.first != next_triangle)
+                throw std::logic_error("flatten: BVH leaf over triangles " + std::to_string(node.first) +
+                                       " is not in depth-first order (expected " + std::to_string(next_triangle) +
+                                       "); host/bvh/builder.cpp broke its BvhTree promise");
+            next_triangle += node.count;
+            nodes[dst] = make_node(node.lo, node.hi, node.first, node.count);
+        } else {
+            const auto pair = static_cast<std::uint32_t>(nodes.size());
+            nodes.resize(nodes.size() + 2);
+            nodes[dst] = make_node(node.lo, node.hi, pair, 0);
+            stack.emplace_back(node.first + 1, pair + 1);
+            stack.emplace_back(node.first, pair);
+        }
+    }
+    return nodes;
 }
 
 }  // namespace
@@ -82,39 +121,32 @@ FlatBvh flatten(const BvhTree& tree, const Scene& scene)
 {
     if (tree.nodes.empty()) return empty_bvh();
 
+    // The node walk is serial and needs nothing from the triangles, so for a large scene the
+    // triangles are made on the other cores meanwhile. 5.2M triangles on 2 cores: 0.35-0.44 s
+    // one after the other (1.0 core busy on average), 0.22-0.25 s overlapped.
     FlatBvh flat;
-    flat.nodes.reserve(tree.nodes.size());
-    flat.nodes.emplace_back();
-    // The builder lays leaves' ranges of prim_indices out in depth-first order (a left
-    // subtree's range before its right sibling's), so the triangles are prim_indices' order,
-    // made apart from the node walk; the walk checks that promise leaf by leaf.
-    make_triangles(tree, scene, flat.triangles);
-    std::uint32_t next_triangle = 0;
-
-    // Pre-order walk with an explicit stack of (tree node, output slot). An inner node
-    // reserves its children's pair when it is visited; pushing right before left makes the
-    // left subtree complete before the right child's pair is reserved.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;
-    stack.emplace_back(0u, 0u);
-    while (!stack.empty()) {
-        const auto [src, dst] = stack.back();
-        stack.pop_back();
-        const BvhBuildNode& node = tree.nodes[src];
-        if (node.count > 0) {
-            if (node.first != next_triangle)
-                throw std::logic_error("flatten: BVH leaf over triangles " + std::to_string(node.first) +
-                                       " is not in depth-first order (expected " + std::to_string(next_triangle) +
-                                       "); host/bvh/builder.cpp broke its BvhTree promise");
-            next_triangle += node.count;
-            flat.nodes[dst] = make_node(node.lo, node.hi, node.first, node.count);
-        } else {
-            const auto pair = static_cast<std::uint32_t>(flat.nodes.size());
-            flat.nodes.resize(flat.nodes.size() + 2);
-            flat.nodes[dst] = make_node(node.lo, node.hi, pair, 0);
-            stack.emplace_back(node.first + 1, pair + 1);
-            stack.emplace_back(node.first, pair);
-        }
+    const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+    if (cores < 2 || tree.prim_indices.size() < kTriangleChunk) {
+        make_triangles(tree, scene, flat.triangles, cores);
+        flat.nodes = flatten_nodes(tree);
+        return flat;
     }
+    std::exception_ptr triangle_error;
+    std::thread triangles([&] {
+        try {
+            make_triangles(tree, scene, flat.triangles, cores - 1);
+        } catch (...) {
+            triangle_error = std::current_exception();
+        }
+    });
+    try {
+        flat.nodes = flatten_nodes(tree);
+    } catch (...) {
+        triangles.join();
+        throw;
+    }
+    triangles.join();
+    if (triangle_error) std::rethrow_exception(triangle_error);
     return flat;
 }
 
