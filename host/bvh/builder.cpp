@@ -416,17 +416,13 @@ private:
             return local;
         }
         auto sets = std::make_unique<BinSet[]>(chunks);
-        TaskGroup group;
-        auto bin_chunk = [&, n, chunks](std::uint32_t c) {
+        m_pool.for_each(chunks, [&, n, chunks](std::size_t c) {
             const std::uint32_t b = job.begin + static_cast<std::uint32_t>(std::uint64_t{n} * c / chunks);
             const std::uint32_t e = job.begin + static_cast<std::uint32_t>(std::uint64_t{n} * (c + 1) / chunks);
             BinSet spare;
             sets[c].reset(map.bins);
             sets[c].add_split(m_refs.data(), b, e, map, spare);
-        };
-        for (std::uint32_t c = 1; c < chunks; ++c) m_pool.spawn(group, [&bin_chunk, c] { bin_chunk(c); });
-        bin_chunk(0);
-        m_pool.wait(group);
+        });
         local.reset(map.bins);
         for (std::uint32_t c = 0; c < chunks; ++c) local.merge(sets[c], map.bins);
         return local;
@@ -596,15 +592,9 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
     Buffer<PrimRef> refs(count);
     const std::size_t chunks = (count + kPrimChunk - 1) / kPrimChunk;
     std::vector<PrimChunk> parts(chunks);
-    {
-        TaskGroup group;
-        for (std::size_t c = 1; c < chunks; ++c)
-            pool.spawn(group, [&, c] {
-                parts[c] = make_refs(scene, refs.data(), c * kPrimChunk, std::min<std::size_t>(count, (c + 1) * kPrimChunk), count);
-            });
-        parts[0] = make_refs(scene, refs.data(), 0, std::min<std::size_t>(count, kPrimChunk), count);
-        pool.wait(group);
-    }
+    pool.for_each(chunks, [&](std::size_t c) {
+        parts[c] = make_refs(scene, refs.data(), c * kPrimChunk, std::min<std::size_t>(count, (c + 1) * kPrimChunk), count);
+    });
     Box4 box;
     Box4 cbox;
     for (const PrimChunk& p : parts) {
@@ -620,16 +610,10 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
 
     // The leaves' triangle order, in the same chunks as the bounds pass.
     tree.prim_indices.resize(count);
-    {
-        auto copy_chunk = [&](std::size_t c) {
-            const std::size_t end = std::min<std::size_t>(count, (c + 1) * kPrimChunk);
-            for (std::size_t i = c * kPrimChunk; i < end; ++i) tree.prim_indices[i] = prim_of(refs[i]);
-        };
-        TaskGroup group;
-        for (std::size_t c = 1; c < chunks; ++c) pool.spawn(group, [&copy_chunk, c] { copy_chunk(c); });
-        copy_chunk(0);
-        pool.wait(group);
-    }
+    pool.for_each(chunks, [&](std::size_t c) {
+        const std::size_t end = std::min<std::size_t>(count, (c + 1) * kPrimChunk);
+        for (std::size_t i = c * kPrimChunk; i < end; ++i) tree.prim_indices[i] = prim_of(refs[i]);
+    });
     return tree;
 }
 

@@ -7,6 +7,8 @@
 //     pool.spawn(group, [&] { ... });   // may run on any thread, or on the caller in wait()
 //     ...                               // the caller's own share
 //     pool.wait(group);                 // rethrows the first exception of the group's tasks
+//
+//     pool.for_each(chunks, [&](std::size_t c) { ... });   // the same for chunks 0..n-1
 #pragma once
 
 #include <condition_variable>
@@ -38,6 +40,25 @@ public:
 
     void spawn(TaskGroup& group, std::function<void()> task);
     void wait(TaskGroup& group);
+
+    // Runs fn(0) .. fn(count - 1) and returns when all have run: fn(0) on the calling thread,
+    // the rest as tasks of one group. Rethrows the first exception (the caller's own first).
+    template <class Fn>
+    void for_each(std::size_t count, const Fn& fn)
+    {
+        TaskGroup group;
+        for (std::size_t i = 1; i < count; ++i) spawn(group, [&fn, i] { fn(i); });
+        std::exception_ptr own;
+        if (count > 0) {
+            try {
+                fn(std::size_t{0});
+            } catch (...) {
+                own = std::current_exception();
+            }
+        }
+        wait(group); // before unwinding: the tasks refer to fn
+        if (own) std::rethrow_exception(own);
+    }
 
 private:
     struct Task {
