@@ -181,28 +181,36 @@ double agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uin
     return double(same) / double(a.size());
 }
 
-// The device's speed over Embree's best in interleaved rounds: each round times Embree's
-// single-ray and 16-wide calls and then the device once, so a change in the machine's load
-// between them hits both sides alike; the median of the per-round ratios is reported. (The
-// medians of separate runs moved by up to 1.6x between runs a minute apart on a shared VM.)
-double interleaved_embree_ratio(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads,
-                                int rounds)
+// A CPU device's timings, in rounds interleaved with Embree on the same cores: each round
+// times Embree's single-ray and 16-wide calls and then the device once, so a change in the
+// machine's load between them hits both sides alike. (Separate runs, Embree's first, moved the
+// ratio by up to 1.6x between runs a minute apart on a shared VM.)
+struct InterleavedRays {
+    std::vector<double> device_seconds;  // one per round
+    double ratio_to_embree = 0.0;        // median of the per-round ratios to Embree's faster call
+};
+
+InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads,
+                                  int rounds, std::vector<std::uint32_t>& result)
 {
     const double n = double(kind.rays->size());
+    InterleavedRays out;
     std::vector<double> ratios;
-    std::vector<std::uint32_t> scratch;
+    std::vector<std::uint32_t> embree_scratch;
     for (int r = 0; r < rounds; ++r) {
         double embree_best = 0.0;
         for (int width : {1, 16}) {
-            const double t = kind.any ? embree.occluded(*kind.rays, threads, width, scratch)
-                                      : embree.closest(*kind.rays, threads, width, scratch);
+            const double t = kind.any ? embree.occluded(*kind.rays, threads, width, embree_scratch)
+                                      : embree.closest(*kind.rays, threads, width, embree_scratch);
             embree_best = std::max(embree_best, n / t);
         }
         const std::vector<double> t =
-            kind.any ? tracer.occluded(*kind.rays, 1, scratch) : tracer.closest(*kind.rays, 1, scratch);
+            kind.any ? tracer.occluded(*kind.rays, 1, result) : tracer.closest(*kind.rays, 1, result);
+        out.device_seconds.insert(out.device_seconds.end(), t.begin(), t.end());
         if (!t.empty() && t[0] > 0.0) ratios.push_back(n / t[0] / embree_best);
     }
-    return ratios.empty() ? 0.0 : median(ratios);
+    out.ratio_to_embree = ratios.empty() ? 0.0 : median(ratios);
+    return out;
 }
 
 void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
@@ -256,9 +264,19 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
         const int repeats = d.info.is_gpu ? 4 * o.repeats : o.repeats;
         for (int k = 0; k < 3; ++k) {
             const RayKind& kind = kinds[k];
+            // A CPU is timed in the rounds interleaved with Embree; a GPU (or any device when
+            // there is no Embree) alone, and compared with Embree's medians above.
+            const bool interleave = embree && !d.info.is_gpu;
             std::vector<std::uint32_t> result;
-            const std::vector<double> times =
-                kind.any ? tracer.occluded(*kind.rays, repeats, result) : tracer.closest(*kind.rays, repeats, result);
+            std::vector<double> times;
+            double to_embree = 0.0;
+            if (interleave) {
+                InterleavedRays rounds = trace_interleaved(kind, *embree, tracer, threads, repeats, result);
+                times = std::move(rounds.device_seconds);
+                to_embree = rounds.ratio_to_embree;
+            } else {
+                times = kind.any ? tracer.occluded(*kind.rays, repeats, result) : tracer.closest(*kind.rays, repeats, result);
+            }
             const double mrays = times.empty() ? 0.0 : double(kind.rays->size()) / median(times) / 1e6;
             json& j = out["rays"][kind.name]["devices"][d.label()];
             j["mrays_per_s"] = json_number(mrays);
@@ -266,16 +284,12 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
             std::string extra;
             if (embree) {
                 const double agree = agreement(result, embree_result[k]);
-                // On CPUs, in rounds interleaved with Embree on the same cores; a GPU is only
-                // compared with the medians above.
-                const int rounds = o.quick ? 1 : o.repeats;
-                const double to_embree = d.info.is_gpu ? mrays / embree_best[k]
-                                                       : interleaved_embree_ratio(kind, *embree, tracer, threads, rounds);
+                if (!interleave) to_embree = mrays / embree_best[k];
                 j["ratio_to_embree"] = json_number(to_embree);
                 j["agreement_with_embree"] = agree;
                 char buffer[160];
                 std::snprintf(buffer, sizeof buffer, " = %.2fx Embree best%s; same result as Embree on %.3f%% of rays",
-                              to_embree, d.info.is_gpu ? "" : " (median of per-round ratios)", 100.0 * agree);
+                              to_embree, interleave ? " (median of per-round ratios)" : "", 100.0 * agree);
                 extra += buffer;
             }
             if (d.info.is_gpu && d.bandwidth > 0.0) {
@@ -340,20 +354,19 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
         const double e_s = median(embree_build);
         const double e_mtris = double(tris) / e_s / 1e6;
         const double speed_ratio = median(build_ratios);
-        const EmbreeBuildFigures& fig = embree_fig;
         embree = std::make_unique<EmbreeTracer>(s.scene);
         say("           Embree rtcBuildBVH BVH2: %.3f s = %.2f Mtris/s, SAH %.2f, %zu nodes | ours/Embree: speed %.2fx "
             "(median of per-round ratios), SAH %s\n",
-            e_s, e_mtris, fig.bvh2_sah, fig.bvh2_nodes, speed_ratio,
-            ratio(stats.sah_cost, fig.bvh2_sah).c_str());
+            e_s, e_mtris, embree_fig.bvh2_sah, embree_fig.bvh2_nodes, speed_ratio,
+            ratio(stats.sah_cost, embree_fig.bvh2_sah).c_str());
         say("           Embree scene commit (its BVH4/8 for tracing): %.3f s = %.2f Mtris/s | ours/Embree speed %s\n",
             embree->commit_seconds(), double(tris) / embree->commit_seconds() / 1e6,
             ratio(ours_mtris, double(tris) / embree->commit_seconds() / 1e6).c_str());
-        out["build"]["embree_bvh2"] = {{"seconds", e_s}, {"mtris_per_s", e_mtris}, {"sah", fig.bvh2_sah},
-                                       {"nodes", fig.bvh2_nodes}};
+        out["build"]["embree_bvh2"] = {{"seconds", e_s}, {"mtris_per_s", e_mtris}, {"sah", embree_fig.bvh2_sah},
+                                       {"nodes", embree_fig.bvh2_nodes}};
         out["build"]["embree_commit_seconds"] = embree->commit_seconds();
         out["build"]["ratio_speed"] = speed_ratio;
-        out["build"]["ratio_sah"] = stats.sah_cost / fig.bvh2_sah;
+        out["build"]["ratio_sah"] = stats.sah_cost / embree_fig.bvh2_sah;
     } else {
         say("           Embree: not built in (no yardstick)\n");
     }
