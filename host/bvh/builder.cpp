@@ -203,12 +203,9 @@ struct NodeJob {
     Box4 cbox;
 };
 
-template <class T>
-using Buffer = std::vector<T, DefaultInitAllocator<T>>;
-
 class Builder {
 public:
-    Builder(Buffer<PrimRef>& refs, BvhTree& tree, const BvhBuildOptions& options, TaskPool& pool)
+    Builder(BigArray<PrimRef>& refs, BvhTree& tree, const BvhBuildOptions& options, TaskPool& pool)
         : m_refs(refs), m_tree(tree), m_options(options), m_pool(pool),
           m_arenas(static_cast<std::size_t>(pool.threads()))
     {
@@ -501,7 +498,7 @@ private:
         return mid;
     }
 
-    Buffer<PrimRef>& m_refs;
+    BigArray<PrimRef>& m_refs;
     BvhTree& m_tree;
     const BvhBuildOptions& m_options;
     TaskPool& m_pool;
@@ -589,7 +586,7 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
 
     // Triangle bounds in chunks; the chunks' results are joined in order, so the error names
     // the first bad triangle whatever the thread count.
-    Buffer<PrimRef> refs(count);
+    BigArray<PrimRef> refs(count);
     const std::size_t chunks = (count + kPrimChunk - 1) / kPrimChunk;
     std::vector<PrimChunk> parts(chunks);
     pool.for_each(chunks, [&](std::size_t c) {

@@ -9,12 +9,8 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
-#include <new>
-#include <type_traits>
-#include <utility>
-#include <vector>
 
+#include "host/bvh/big_array.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -46,37 +42,12 @@ struct BvhBuildNode {
     std::uint32_t count; // 0: inner node
 };
 
-// A std::allocator whose resize() leaves trivial elements uninitialised: the builder sizes
-// its arrays for the worst case up front and writes every element it uses exactly once.
-template <class T>
-struct DefaultInitAllocator : std::allocator<T> {
-    template <class U>
-    struct rebind {
-        using other = DefaultInitAllocator<U>;
-    };
-    DefaultInitAllocator() = default;
-    template <class U>
-    DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
-    {
-    }
-    template <class U>
-    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
-    {
-        ::new (static_cast<void*>(p)) U;
-    }
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args)
-    {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-};
-
 // Leaves' ranges of prim_indices follow the depth-first order of the tree (a left child's
 // range comes before its right sibling's, and together they make their parent's), which
 // flatten() relies on.
 struct BvhTree {
-    std::vector<BvhBuildNode, DefaultInitAllocator<BvhBuildNode>> nodes; // root at 0; empty for an empty scene
-    std::vector<std::uint32_t> prim_indices; // scene triangle indices in leaf order
+    BigArray<BvhBuildNode> nodes; // root at 0; empty for an empty scene
+    BigArray<std::uint32_t> prim_indices;    // scene triangle indices in leaf order
 };
 
 // Throws UsageError for options out of range and InputError for a scene with non-finite

@@ -48,7 +48,7 @@ constexpr std::size_t kTriangleChunk = 65536; // below this a thread costs more 
 // Triangle i of the flat layout is scene triangle prim_indices[i] (see flatten()), made on up
 // to `max_threads` threads. Each is a pure function of the scene, so chunks on several threads
 // give the same bytes as one loop.
-void make_triangles(const BvhTree& tree, const Scene& scene, std::vector<dev::GcTriangle>& out, std::size_t max_threads)
+void make_triangles(const BvhTree& tree, const Scene& scene, BigArray<dev::GcTriangle>& out, std::size_t max_threads)
 {
     const std::size_t n = tree.prim_indices.size();
     out.resize(n);
@@ -73,9 +73,9 @@ void make_triangles(const BvhTree& tree, const Scene& scene, std::vector<dev::Gc
 // builder lays leaves' ranges of prim_indices out in the same order (a left subtree's range
 // before its right sibling's), so the triangles are prim_indices' order, made apart from this
 // walk; the walk checks that promise leaf by leaf.
-std::vector<dev::GcBvhNode> flatten_nodes(const BvhTree& tree)
+BigArray<dev::GcBvhNode> flatten_nodes(const BvhTree& tree)
 {
-    std::vector<dev::GcBvhNode> nodes;
+    BigArray<dev::GcBvhNode> nodes;
     nodes.reserve(tree.nodes.size());
     nodes.emplace_back();
     std::uint32_t next_triangle = 0;

@@ -21,8 +21,8 @@ namespace gc {
 // GC_INVALID: both buffers are non-empty (OpenCL has no zero-sized buffers) and every ray
 // misses (see gc_traverse.h).
 struct FlatBvh {
-    std::vector<dev::GcBvhNode> nodes;
-    std::vector<dev::GcTriangle> triangles;
+    BigArray<dev::GcBvhNode> nodes;
+    BigArray<dev::GcTriangle> triangles;
     double build_seconds = 0.0; // wall time of build_bvh (tree + flatten); 0 if not timed
 
     // Triangles of the scene (0 for the empty scene's dummy).

@@ -120,8 +120,8 @@ private:
 };
 
 // A read-only device copy of `data`: scene data the kernels only read.
-template <class T>
-Buffer<T> read_only_buffer(const Context& context, const std::vector<T>& data, std::string name)
+template <class T, class Allocator>
+Buffer<T> read_only_buffer(const Context& context, const std::vector<T, Allocator>& data, std::string name)
 {
     Buffer<T> buffer = Buffer<T>::create(context, data.size(), CL_MEM_READ_ONLY, std::move(name));
     buffer.write(std::span<const T>(data));

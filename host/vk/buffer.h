@@ -30,8 +30,9 @@ public:
         b.write(data.data(), data.size_bytes());
         return b;
     }
-    template <typename T>
-    static Buffer with_data(const Context& context, const std::vector<T>& data, VkBufferUsageFlags usage, std::string name)
+    template <typename T, typename Allocator>
+    static Buffer with_data(const Context& context, const std::vector<T, Allocator>& data, VkBufferUsageFlags usage,
+                            std::string name)
     {
         return with_data(context, std::span<const T>(data), usage, std::move(name));
     }

@@ -25,8 +25,8 @@ SceneBuffers SceneBuffers::upload(const Context& context, const Scene& scene, co
 
     SceneBuffers b{
         Buffer(context, sizeof(dev::GcRenderParams), kStorage, "render parameters"),
-        Buffer::with_data(context, bvh ? bvh->nodes : std::vector<dev::GcBvhNode>{}, kStorage, "bvh nodes"),
-        Buffer::with_data(context, bvh ? bvh->triangles : std::vector<dev::GcTriangle>{}, kStorage, "bvh triangles"),
+        Buffer::with_data(context, bvh ? bvh->nodes : BigArray<dev::GcBvhNode>{}, kStorage, "bvh nodes"),
+        Buffer::with_data(context, bvh ? bvh->triangles : BigArray<dev::GcTriangle>{}, kStorage, "bvh triangles"),
         Buffer::with_data(context, make_triangle_attribs(scene), kStorage, "triangle attributes"),
         Buffer::with_data(context, make_materials(scene), kStorage, "materials"),
         Buffer::with_data(context, tex.textures, kStorage, "textures"),
