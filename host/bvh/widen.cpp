@@ -17,8 +17,13 @@ constexpr std::uint32_t kBlockLanes = 4;
 struct Bvh2View {
     const FlatBvh& bvh;
     // Per BVH2 node: its subtree's triangles, [tri_first, tri_end) in bvh.triangles.
-    std::vector<std::uint32_t> tri_first;
-    std::vector<std::uint32_t> tri_end;
+    BigArray<std::uint32_t> tri_first;
+    BigArray<std::uint32_t> tri_end;
+    // Sizes for reserving the output once. Every wide inner node opens a BVH2 node that does
+    // not become a leaf, so their number bounds the wide nodes; every child of such a node
+    // that does become a leaf is one wide leaf, so their blocks are all the blocks.
+    std::size_t inner_bound = 0;
+    std::size_t block_count = 0;
 
     bool is_leaf(std::uint32_t n) const { return dev::gc_node_is_leaf(bvh.nodes[n]); }
     std::uint32_t first(std::uint32_t n) const { return dev::gc_node_first(bvh.nodes[n]); }
@@ -35,13 +40,14 @@ struct Bvh2View {
     }
 };
 
-// Fills tri_first/tri_end bottom-up. Children always follow their parent in the flat order
-// (flatten's depth-first layout), so one backward sweep sees children before parents.
+// Fills tri_first/tri_end bottom-up and counts inner_bound and block_count. Children always follow their
+// parent in the flat order (flatten's depth-first layout), so one backward sweep sees children
+// before parents; every entry is written.
 void compute_ranges(Bvh2View& view)
 {
     const std::size_t n = view.bvh.nodes.size();
-    view.tri_first.assign(n, 0);
-    view.tri_end.assign(n, 0);
+    view.tri_first.resize(n);
+    view.tri_end.resize(n);
     for (std::size_t i = n; i-- > 0;) {
         const auto node = static_cast<std::uint32_t>(i);
         const std::uint32_t first = view.first(node);
@@ -51,6 +57,11 @@ void compute_ranges(Bvh2View& view)
         } else {
             view.tri_first[i] = std::min(view.tri_first[first], view.tri_first[first + 1]);
             view.tri_end[i] = std::max(view.tri_end[first], view.tri_end[first + 1]);
+        }
+        if (!view.becomes_leaf(node)) {
+            ++view.inner_bound;
+            for (const std::uint32_t child : {first, first + 1})
+                if (view.becomes_leaf(child)) view.block_count += (view.triangles(child) + kBlockLanes - 1) / kBlockLanes;
         }
     }
 }
@@ -189,9 +200,10 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
         out.blocks.push_back(empty_block());
         return out;
     }
-    Bvh2View view{bvh, {}, {}};
+    Bvh2View view{bvh, {}, {}, 0, 0};
     compute_ranges(view);
-    out.blocks.reserve(bvh.triangles.size() / 2 + 1);
+    out.nodes.reserve(view.inner_bound + 1);
+    out.blocks.reserve(std::max<std::size_t>(view.block_count, 1));
     Widener<Node, Width> widener(view, out);
     if (view.becomes_leaf(0)) {
         // A root that is one leaf still needs an inner root: traversal starts at node 0.
@@ -201,6 +213,9 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
         return out;
     }
     widener.inner(0);  // emits the root first, as node 0
+    if (out.blocks.size() != view.block_count)
+        throw std::logic_error("wide BVH: " + std::to_string(out.blocks.size()) + " blocks emitted, " +
+                               std::to_string(view.block_count) + " counted");
     return out;
 }
 

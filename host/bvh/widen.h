@@ -7,9 +7,8 @@
 //     WideBvh wide = widen(bvh);   // upload wide.nodes and wide.blocks
 #pragma once
 
-#include <vector>
-
 #include "gc_types.h"
+#include "host/bvh/big_array.h"
 #include "host/bvh/flatten.h"
 
 namespace gc {
@@ -20,8 +19,8 @@ namespace gc {
 // every lane), so both buffers are non-empty and every ray misses.
 template <class Node>
 struct WideBvhOf {
-    std::vector<Node> nodes;
-    std::vector<dev::GcTriangle4> blocks;
+    BigArray<Node> nodes;
+    BigArray<dev::GcTriangle4> blocks;
 };
 using WideBvh = WideBvhOf<dev::GcBvh4Node>;
 using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h)
