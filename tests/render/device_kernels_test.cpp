@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -224,6 +226,61 @@ TEST(DeviceSampling, TrigAndHemisphereEqualHost)
         }
         std::printf("[sampling] %s: %u inputs, %zu differ from the host (bit for bit)\n", device.device_name.c_str(),
                     count, differing);
+        EXPECT_EQ(differing, 0u) << device.device_name;
+    }
+}
+
+// kernels/packet_probe.cl: the same vertex with 8 and 16 vertices per work-item in vector
+// lanes gives the bits of one vertex per work-item, on every device, including vertices on the
+// light's plane (division by zero) and normals along -z (the frame's special case). This is
+// the premise of explicit SIMD across paths on CPUs: the image would not change.
+TEST(DevicePacketProbe, VectorLanesGiveTheScalarBits)
+{
+    const std::vector<cl::DeviceInfo> devices = devices_or_skip();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    constexpr std::uint32_t count = 4096;  // a multiple of 16
+    std::vector<std::vector<float>> inputs(9, std::vector<float>(count));
+    test::Rng rng(11);
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const Point3 p = rng.point(Bounds3{Point3(-1.0f, -1.0f, -1.0f), Point3(1.0f, 1.0f, 1.0f)});
+        const Vec3 n = i % 7 == 0 ? Vec3(0.0f, 0.0f, -1.0f) : rng.direction();
+        const float py = i % 11 == 0 ? 1.98f : p.y;  // on the light's plane
+        const float values[9] = {p.x, py, p.z, n.x, n.y, n.z, 0.5f, 0.6f, 0.7f};
+        for (int k = 0; k < 9; ++k) inputs[static_cast<std::size_t>(k)][i] = values[k];
+    }
+    for (const cl::DeviceInfo& device : devices) {
+        const cl::Context context(device);
+        const cl::Program program(context, "packet_probe.cl");
+        std::vector<cl::Buffer<float>> in;
+        for (const std::vector<float>& v : inputs) in.push_back(cl::read_only_buffer(context, v, "probe input"));
+        std::vector<std::vector<float>> results;  // per form, the six outputs one after the other
+        for (const auto& [name, lanes] : {std::pair<const char*, std::uint32_t>{"packet_probe_x1", 1u},
+                                          {"packet_probe_x8", 8u}, {"packet_probe_x16", 16u}}) {
+            std::vector<cl::Buffer<float>> out;
+            for (int k = 0; k < 6; ++k) out.push_back(cl::Buffer<float>::create(context, count, CL_MEM_WRITE_ONLY, "probe output"));
+            cl::Kernel kernel = program.kernel(name);
+            kernel.set_args(in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], in[8], out[0], out[1], out[2],
+                            out[3], out[4], out[5], 77u, count);
+            kernel.launch(context, count / lanes);
+            context.finish();
+            std::vector<float> all(6 * count);
+            for (std::size_t k = 0; k < 6; ++k) out[k].read(std::span<float>(all.data() + k * count, count));
+            results.push_back(std::move(all));
+        }
+        // NaN payloads are not part of an image, so two NaNs count as equal.
+        std::size_t differing = 0, non_finite = 0;
+        for (std::size_t i = 0; i < results[0].size(); ++i) {
+            const float x = results[0][i];
+            non_finite += std::isfinite(x) ? 0 : 1;
+            for (std::size_t f = 1; f < results.size(); ++f) {
+                const float y = results[f][i];
+                const bool same = std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y));
+                differing += same ? 0 : 1;
+            }
+        }
+        std::printf("[packet] %s: %zu outputs of float8 and float16 lanes against one vertex per work-item "
+                    "(%zu of them non-finite), %zu differ in their bits\n",
+                    device.device_name.c_str(), 2 * results[0].size(), 2 * non_finite, differing);
         EXPECT_EQ(differing, 0u) << device.device_name;
     }
 }

@@ -4,6 +4,7 @@
 //
 //   geocold-bench [--device all|SPEC] [--scene cornell,bunny,dragon,large] [--quick] [--json]
 //                 [--repeats N] [--rays SIDE] [--no-path] [--no-rays] [--no-first-image]
+//                 [--no-packet-probe]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,6 +32,7 @@
 #include "tools/bench/embree_bench.h"
 #include "tools/bench/first_image.h"
 #include "tools/bench/ocl_bench.h"
+#include "tools/bench/packet_probe.h"
 #include "tools/bench/rays.h"
 
 namespace gc::bench {
@@ -52,6 +54,7 @@ struct Options {
     int repeats = 5;
     int ray_side = 1024;
     bool path = true;
+    bool packet_probe = true;
     bool rays = true;
     bool first_image = true;
     std::string first_image_child; // the device key (device_key()) in the child process
@@ -107,12 +110,13 @@ Options parse(int argc, char** argv)
         else if (a == "--no-path") o.path = false;
         else if (a == "--no-rays") o.rays = false;
         else if (a == "--no-first-image") o.first_image = false;
+        else if (a == "--no-packet-probe") o.packet_probe = false;
         else if (a == "--first-image-child") o.first_image_child = value(i);
         else if (a == "--list-device-keys") o.list_device_keys = true;
         else if (a == "--help" || a == "-h") {
             std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
                         "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
-                        "                     [--no-rays] [--no-first-image]\n");
+                        "                     [--no-rays] [--no-first-image] [--no-packet-probe]\n");
             std::exit(0);
         } else {
             throw UsageError("geocold-bench: unknown option '" + a + "' (see --help)");
@@ -512,6 +516,24 @@ void bench_first_images(const Options& o, json& doc)
     }
 }
 
+// What explicit SIMD across paths would gain per device (tools/bench/packet_probe.h): the
+// figure behind the CPU shading design, re-measurable on any machine.
+void bench_packet_probe(const Options& o, std::vector<DeviceSlot>& devices, json& doc)
+{
+    const std::size_t vertices = o.quick ? std::size_t{1} << 14 : std::size_t{1} << 22;
+    say("\n== explicit SIMD probe (kernels/packet_probe.cl: %zu Lambert vertices, NEE + cosine sample) ==\n", vertices);
+    for (DeviceSlot& d : devices) {
+        const PacketProbeFigures f = run_packet_probe(*d.context, vertices, o.repeats);
+        say("  %s: 1 vertex per work-item %.1f Mvertices/s; 8 in float8 lanes %.1f = %.2fx; 16 in float16 lanes "
+            "%.1f = %.2fx (medians of per-round ratios); %zu of %zu outputs differ from the scalar form's bits\n",
+            d.label().c_str(), f.x1_mvertices, f.x8_mvertices, f.x8_ratio, f.x16_mvertices, f.x16_ratio, f.differing,
+            2 * f.outputs);
+        doc["packet_probe"][d.label()] = {{"x1_mvertices", f.x1_mvertices}, {"x8_mvertices", f.x8_mvertices},
+                                          {"x16_mvertices", f.x16_mvertices}, {"x8_ratio", f.x8_ratio},
+                                          {"x16_ratio", f.x16_ratio}, {"differing_bits", f.differing}};
+    }
+}
+
 int run(int argc, char** argv)
 {
     const Options o = parse(argc, argv);
@@ -556,6 +578,8 @@ int run(int argc, char** argv)
         doc["scenes"][name] = bench_scene(*scene, o, devices, summary);
         doc["scenes"][name]["load_seconds"] = load_s;
     }
+
+    if (o.packet_probe) bench_packet_probe(o, devices, doc);
 
     if (summary.contains("cornell_path") && summary["cornell_path"].contains("gpu") &&
         summary["cornell_path"].contains("cpu")) {
