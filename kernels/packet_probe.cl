@@ -1,8 +1,9 @@
 /*
  * packet_probe.cl — what explicit SIMD across paths would gain on a device, and whether it
- * keeps the bits. One Lambert path vertex (next-event estimation with an MIS weight, then a
- * cosine-weighted direction in world space; the arithmetic of gc_path_vertex.h's diffuse case
- * written out without float3) is compiled three ways from one source (packet_probe_vertex.h):
+ * keeps the bits. One Lambert path vertex, shaped like gc_path_vertex.h's diffuse case but
+ * self-contained (next-event estimation to a fixed quad light with an MIS weight, then a
+ * cosine-weighted direction in world space; random numbers hashed from the vertex index; no
+ * float3), is compiled three ways from one source (packet_probe_vertex.h):
  *
  *   packet_probe_x1   one vertex per work-item, as every kernel of the renderer works today
  *   packet_probe_x8   eight vertices per work-item in float8 lanes
