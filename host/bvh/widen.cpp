@@ -6,8 +6,11 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "gc_accessors.h"
+#include "host/bvh/task_pool.h"
 
 namespace gc {
 namespace {
@@ -19,11 +22,13 @@ struct Bvh2View {
     // Per BVH2 node: its subtree's triangles, [tri_first, tri_end) in bvh.triangles.
     BigArray<std::uint32_t> tri_first;
     BigArray<std::uint32_t> tri_end;
-    // Sizes for reserving the output once. Every wide inner node opens a BVH2 node that does
-    // not become a leaf, so their number bounds the wide nodes; every child of such a node
-    // that does become a leaf is one wide leaf, so their blocks are all the blocks.
+    // Per BVH2 node: the blocks its subtree collapses into. A node that becomes a leaf is its
+    // own blocks; any other has exactly the wide leaves of its two children, since opening
+    // only ever replaces a node that does not become a leaf by its two children.
+    BigArray<std::uint32_t> blocks_below;
+    // Every wide inner node opens a BVH2 node that does not become a leaf, so their number
+    // bounds the wide nodes (the output is reserved once, not regrown).
     std::size_t inner_bound = 0;
-    std::size_t block_count = 0;
 
     bool is_leaf(std::uint32_t n) const { return dev::gc_node_is_leaf(bvh.nodes[n]); }
     std::uint32_t first(std::uint32_t n) const { return dev::gc_node_first(bvh.nodes[n]); }
@@ -40,7 +45,7 @@ struct Bvh2View {
     }
 };
 
-// Fills tri_first/tri_end bottom-up and counts inner_bound and block_count. Children always follow their
+// Fills the per-node arrays bottom-up and counts inner_bound. Children always follow their
 // parent in the flat order (flatten's depth-first layout), so one backward sweep sees children
 // before parents; every entry is written.
 void compute_ranges(Bvh2View& view)
@@ -48,6 +53,7 @@ void compute_ranges(Bvh2View& view)
     const std::size_t n = view.bvh.nodes.size();
     view.tri_first.resize(n);
     view.tri_end.resize(n);
+    view.blocks_below.resize(n);
     for (std::size_t i = n; i-- > 0;) {
         const auto node = static_cast<std::uint32_t>(i);
         const std::uint32_t first = view.first(node);
@@ -58,10 +64,11 @@ void compute_ranges(Bvh2View& view)
             view.tri_first[i] = std::min(view.tri_first[first], view.tri_first[first + 1]);
             view.tri_end[i] = std::max(view.tri_end[first], view.tri_end[first + 1]);
         }
-        if (!view.becomes_leaf(node)) {
+        if (view.becomes_leaf(node)) {
+            view.blocks_below[i] = (view.triangles(node) + kBlockLanes - 1) / kBlockLanes;
+        } else {
+            view.blocks_below[i] = view.blocks_below[first] + view.blocks_below[first + 1];
             ++view.inner_bound;
-            for (const std::uint32_t child : {first, first + 1})
-                if (view.becomes_leaf(child)) view.block_count += (view.triangles(child) + kBlockLanes - 1) / kBlockLanes;
         }
     }
 }
@@ -112,87 +119,287 @@ Node empty_node()
     return node;
 }
 
+// The reference a wide node keeps to a leaf of `blocks` blocks starting at `first_block`.
+std::uint32_t leaf_ref(std::size_t first_block, std::uint32_t blocks)
+{
+    return GC_BVH4_LEAF | ((blocks - 1) << GC_BVH4_LEAF_COUNT_SHIFT) | static_cast<std::uint32_t>(first_block);
+}
+
+std::uint32_t block_count(const Bvh2View& view, std::uint32_t n)
+{
+    return (view.triangles(n) + kBlockLanes - 1) / kBlockLanes;
+}
+
+// Writes the blocks of BVH2 subtree `n` (a wide leaf) to out[0 .. block_count(n)).
+void write_blocks(const Bvh2View& view, std::uint32_t n, dev::GcTriangle4* out)
+{
+    const std::uint32_t first_tri = view.tri_first[n];
+    const std::uint32_t count = view.triangles(n);
+    for (std::uint32_t b = 0; b < block_count(view, n); ++b) {
+        dev::GcTriangle4 block = empty_block();
+        for (std::uint32_t lane = 0; lane < kBlockLanes; ++lane) {
+            const std::uint32_t i = b * kBlockLanes + lane;
+            if (i >= count) break;
+            const dev::GcTriangle& tri = view.bvh.triangles[first_tri + i];
+            block.v0x[lane] = tri.v0.x;
+            block.v0y[lane] = tri.v0.y;
+            block.v0z[lane] = tri.v0.z;
+            block.v1x[lane] = tri.v1.x;
+            block.v1y[lane] = tri.v1.y;
+            block.v1z[lane] = tri.v1.z;
+            block.v2x[lane] = tri.v2.x;
+            block.v2y[lane] = tri.v2.y;
+            block.v2z[lane] = tri.v2.z;
+            block.prim[lane] = dev::gc_triangle_prim(tri);
+            block.flags[lane] = dev::gc_triangle_flags(tri);
+        }
+        out[b] = block;
+    }
+}
+
+// The BVH2 nodes that become the slots of the wide node for inner BVH2 node `n`: its two
+// children, then repeatedly the child with the largest surface area that is not a leaf opened
+// in place (its two children take its slot and the next, keeping the BVH2's left-to-right
+// order), until there are Width. Returns how many.
+template <std::uint32_t Width>
+std::uint32_t collapse_children(const Bvh2View& view, std::uint32_t n, std::uint32_t (&children)[Width])
+{
+    std::uint32_t count = 0;
+    children[count++] = view.first(n);
+    children[count++] = view.first(n) + 1;
+    while (count < Width) {
+        int widest = -1;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            if (view.becomes_leaf(children[k])) continue;
+            if (widest < 0 || view.area(children[k]) > view.area(children[static_cast<std::uint32_t>(widest)]))
+                widest = static_cast<int>(k);
+        }
+        if (widest < 0) break;
+        const std::uint32_t opened = children[widest];
+        for (std::uint32_t k = count; k > static_cast<std::uint32_t>(widest) + 1; --k) children[k] = children[k - 1];
+        children[widest] = view.first(opened);
+        children[widest + 1] = view.first(opened) + 1;
+        ++count;
+    }
+    return count;
+}
+
+// The collapse of one subtree, depth first: wide nodes appended to `nodes`, blocks written
+// to blocks[first_block, end_block) (the subtree's place in the whole BVH, so leaf references
+// are final). The range comes from blocks_below; a collapse that would leave it, or not fill
+// it (done()), is a bug here and throws rather than write out of bounds.
 template <class Node, std::uint32_t Width>
 class Widener {
 public:
-    explicit Widener(const Bvh2View& view, WideBvhOf<Node>& out) : m_view(view), m_out(out) {}
+    Widener(const Bvh2View& view, BigArray<Node>& nodes, dev::GcTriangle4* blocks, std::size_t first_block,
+            std::size_t end_block)
+        : m_view(view), m_nodes(nodes), m_blocks(blocks), m_next_block(first_block), m_end_block(end_block)
+    {
+    }
+
+    void done() const
+    {
+        if (m_next_block != m_end_block)
+            throw std::logic_error("wide BVH: a subtree's blocks end at " + std::to_string(m_next_block) +
+                                   ", counted to end at " + std::to_string(m_end_block));
+    }
 
     // Emits the blocks of BVH2 subtree `n` and returns its leaf reference.
     std::uint32_t leaf(std::uint32_t n)
     {
-        const std::uint32_t first_tri = m_view.tri_first[n];
-        const std::uint32_t count = m_view.triangles(n);
-        const std::uint32_t blocks = (count + kBlockLanes - 1) / kBlockLanes;
-        const std::size_t first_block = m_out.blocks.size();
+        const std::uint32_t blocks = block_count(m_view, n);
         if (blocks == 0 || blocks > GC_BVH4_LEAF_MAX_BLOCKS)
-            throw std::logic_error("wide BVH: a leaf of " + std::to_string(count) + " triangles does not fit one reference");
-        if (first_block + blocks - 1 > GC_BVH4_LEAF_FIRST_MASK)
-            throw std::length_error("wide BVH: more than " + std::to_string(GC_BVH4_LEAF_FIRST_MASK + 1u) +
-                                    " triangle blocks");
-        for (std::uint32_t b = 0; b < blocks; ++b) {
-            dev::GcTriangle4 block = empty_block();
-            for (std::uint32_t lane = 0; lane < kBlockLanes; ++lane) {
-                const std::uint32_t i = b * kBlockLanes + lane;
-                if (i >= count) break;
-                const dev::GcTriangle& tri = m_view.bvh.triangles[first_tri + i];
-                block.v0x[lane] = tri.v0.x;
-                block.v0y[lane] = tri.v0.y;
-                block.v0z[lane] = tri.v0.z;
-                block.v1x[lane] = tri.v1.x;
-                block.v1y[lane] = tri.v1.y;
-                block.v1z[lane] = tri.v1.z;
-                block.v2x[lane] = tri.v2.x;
-                block.v2y[lane] = tri.v2.y;
-                block.v2z[lane] = tri.v2.z;
-                block.prim[lane] = dev::gc_triangle_prim(tri);
-                block.flags[lane] = dev::gc_triangle_flags(tri);
-            }
-            m_out.blocks.push_back(block);
-        }
-        return GC_BVH4_LEAF | ((blocks - 1) << GC_BVH4_LEAF_COUNT_SHIFT) | static_cast<std::uint32_t>(first_block);
+            throw std::logic_error("wide BVH: a leaf of " + std::to_string(m_view.triangles(n)) +
+                                   " triangles does not fit one reference");
+        const std::size_t first_block = m_next_block;
+        if (first_block + blocks > m_end_block) done();
+        write_blocks(m_view, n, m_blocks + first_block);
+        m_next_block += blocks;
+        return leaf_ref(first_block, blocks);
     }
 
-    // Emits the BVH4 node for BVH2 inner node `n` (and its subtree) and returns its index.
+    // Emits the wide node for BVH2 inner node `n` (and its subtree) and returns its index in
+    // `nodes`.
     std::uint32_t inner(std::uint32_t n)
     {
         std::uint32_t children[Width];
-        std::uint32_t count = 0;
-        children[count++] = m_view.first(n);
-        children[count++] = m_view.first(n) + 1;
-        while (count < Width) {
-            int widest = -1;
-            for (std::uint32_t k = 0; k < count; ++k) {
-                if (m_view.becomes_leaf(children[k])) continue;
-                if (widest < 0 || m_view.area(children[k]) > m_view.area(children[static_cast<std::uint32_t>(widest)]))
-                    widest = static_cast<int>(k);
-            }
-            if (widest < 0) break;
-            // Open it in place: its two children take its slot and the next, keeping the
-            // BVH2's left-to-right order.
-            const std::uint32_t opened = children[widest];
-            for (std::uint32_t k = count; k > static_cast<std::uint32_t>(widest) + 1; --k) children[k] = children[k - 1];
-            children[widest] = m_view.first(opened);
-            children[widest + 1] = m_view.first(opened) + 1;
-            ++count;
-        }
-        const auto index = static_cast<std::uint32_t>(m_out.nodes.size());
-        if (index > ~GC_BVH4_LEAF) throw std::length_error("wide BVH: too many nodes");
-        m_out.nodes.push_back(empty_node<Node, Width>());
+        const std::uint32_t count = collapse_children<Width>(m_view, n, children);
+        const auto index = static_cast<std::uint32_t>(m_nodes.size());
+        m_nodes.push_back(empty_node<Node, Width>());
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::uint32_t c = children[k];
             const std::uint32_t ref = m_view.becomes_leaf(c) ? leaf(c) : inner(c);
-            set_slot(m_out.nodes[index], static_cast<int>(k), m_view.bvh.nodes[c], ref);
+            set_slot(m_nodes[index], static_cast<int>(k), m_view.bvh.nodes[c], ref);
         }
         return index;
     }
 
 private:
     const Bvh2View& m_view;
-    WideBvhOf<Node>& m_out;
+    BigArray<Node>& m_nodes;
+    dev::GcTriangle4* m_blocks;
+    std::size_t m_next_block;
+    const std::size_t m_end_block;
 };
 
+// Node and block counts must fit the references (gc_types.h): block indices in
+// GC_BVH4_LEAF_FIRST_MASK, node indices below GC_BVH4_LEAF. Checked before anything is
+// written, from the exact block count and the bound on the node count.
+void check_reference_range(std::size_t node_bound, std::size_t blocks)
+{
+    if (blocks > std::size_t{GC_BVH4_LEAF_FIRST_MASK} + 1u)
+        throw std::length_error("wide BVH: " + std::to_string(blocks) + " triangle blocks, more than the " +
+                                std::to_string(GC_BVH4_LEAF_FIRST_MASK + 1u) + " a leaf reference can address");
+    if (node_bound > std::size_t{GC_BVH4_LEAF})
+        throw std::length_error("wide BVH: up to " + std::to_string(node_bound) + " nodes, more than the " +
+                                std::to_string(GC_BVH4_LEAF) + " an inner reference can address");
+}
+
+// A child reference of a subtree collapsed on its own, moved to where the subtree's nodes
+// start in the whole BVH. Leaf references are already final (its blocks were written in
+// place); empty slots stay GC_INVALID.
+std::uint32_t rebase(std::uint32_t ref, std::size_t node_base)
+{
+    if (ref == GC_INVALID || (ref & GC_BVH4_LEAF) != 0u) return ref;
+    return ref + static_cast<std::uint32_t>(node_base);
+}
+
+void rebase_children(dev::GcBvh4Node& node, std::size_t node_base)
+{
+    for (int k = 0; k < 4; ++k) node.child[k] = rebase(node.child[k], node_base);
+}
+
+void rebase_children(dev::GcBvh8Node& node, std::size_t node_base)
+{
+    for (int k = 0; k < 4; ++k) {
+        node.child0[k] = rebase(node.child0[k], node_base);
+        node.child1[k] = rebase(node.child1[k], node_base);
+    }
+}
+
+// The collapse on several threads, with the bytes of the serial one. The top of the tree is
+// walked as Widener would, but a child subtree of at most `subtree_triangles` triangles is set
+// aside as a piece of its own. The pieces are kept in the serial walk's order, so prefix sums
+// of their sizes give where each goes: block counts are known before anything is collapsed
+// (blocks_below), so every piece writes its blocks in place; node counts are not, so the
+// subtrees collapse into node arrays of their own, copied to their places afterwards with
+// their inner references moved. Every step but the top walk runs on the pool.
 template <class Node, std::uint32_t Width>
-WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
+class SplicedCollapse {
+public:
+    SplicedCollapse(const Bvh2View& view, std::uint32_t subtree_triangles)
+        : m_view(view), m_subtree_triangles(subtree_triangles)
+    {
+    }
+
+    void run(TaskPool& pool, WideBvhOf<Node>& out)
+    {
+        walk_top(0);
+        std::vector<std::size_t> subtrees;
+        std::size_t blocks = 0;
+        for (std::size_t p = 0; p < m_pieces.size(); ++p) {
+            m_pieces[p].block_base = blocks;
+            blocks += m_pieces[p].blocks;
+            if (m_pieces[p].kind == Kind::Subtree) subtrees.push_back(p);
+        }
+        check_reference_range(m_view.inner_bound + 1, blocks);
+        out.blocks.resize(blocks);
+        for (const Piece& piece : m_pieces)
+            if (piece.kind == Kind::Leaf) write_blocks(m_view, piece.bvh2, &out.blocks[piece.block_base]);
+
+        std::vector<BigArray<Node>> subtree_nodes(subtrees.size());
+        pool.for_each(subtrees.size(), [&](std::size_t t) {
+            Piece& piece = m_pieces[subtrees[t]];
+            // A subtree's wide nodes open distinct BVH2 nodes of more than four triangles
+            // each, nested or disjoint: fewer than half its triangles.
+            subtree_nodes[t].reserve(m_view.triangles(piece.bvh2) / 2 + 1);
+            Widener<Node, Width> widener(m_view, subtree_nodes[t], out.blocks.data(), piece.block_base,
+                                         piece.block_base + piece.blocks);
+            widener.inner(piece.bvh2);
+            widener.done();
+            piece.nodes = subtree_nodes[t].size();
+        });
+
+        std::size_t nodes = 0;
+        for (Piece& piece : m_pieces) {
+            piece.node_base = nodes;
+            nodes += piece.nodes;
+        }
+        out.nodes.resize(nodes);
+        for (const Piece& piece : m_pieces)
+            if (piece.kind == Kind::Inner) out.nodes[piece.node_base] = empty_node<Node, Width>();
+        for (const Slot& slot : m_slots) {
+            const Piece& child = m_pieces[slot.child_piece];
+            const std::uint32_t ref = child.kind == Kind::Leaf
+                                          ? leaf_ref(child.block_base, static_cast<std::uint32_t>(child.blocks))
+                                          : static_cast<std::uint32_t>(child.node_base);
+            set_slot(out.nodes[m_pieces[slot.parent_piece].node_base], slot.index, m_view.bvh.nodes[child.bvh2], ref);
+        }
+        pool.for_each(subtrees.size(), [&](std::size_t t) {
+            const std::size_t base = m_pieces[subtrees[t]].node_base;
+            BigArray<Node>& part = subtree_nodes[t];
+            for (std::size_t i = 0; i < part.size(); ++i) {
+                Node node = part[i];
+                rebase_children(node, base);
+                out.nodes[base + i] = node;
+            }
+            part = BigArray<Node>();  // give the memory back as soon as it is copied
+        });
+    }
+
+private:
+    enum class Kind { Inner, Leaf, Subtree };
+    struct Piece {
+        Kind kind;
+        std::uint32_t bvh2;         // the BVH2 node it comes from
+        std::size_t nodes = 0;      // wide nodes and blocks it holds
+        std::size_t blocks = 0;
+        std::size_t node_base = 0;  // where they go in the whole BVH
+        std::size_t block_base = 0;
+    };
+    // Slot `index` of the wide node of piece `parent_piece` refers to piece `child_piece`.
+    struct Slot {
+        std::size_t parent_piece;
+        int index;
+        std::size_t child_piece;
+    };
+
+    void walk_top(std::uint32_t n)
+    {
+        const std::size_t self = m_pieces.size();
+        m_pieces.push_back(Piece{Kind::Inner, n, 1, 0});
+        std::uint32_t children[Width];
+        const std::uint32_t count = collapse_children<Width>(m_view, n, children);
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const std::uint32_t c = children[k];
+            const std::size_t at = m_pieces.size();
+            if (m_view.becomes_leaf(c)) {
+                const std::uint32_t blocks = block_count(m_view, c);
+                if (blocks > GC_BVH4_LEAF_MAX_BLOCKS)
+                    throw std::logic_error("wide BVH: a leaf of " + std::to_string(m_view.triangles(c)) +
+                                           " triangles does not fit one reference");
+                m_pieces.push_back(Piece{Kind::Leaf, c, 0, blocks});
+            } else if (m_view.triangles(c) <= m_subtree_triangles) {
+                m_pieces.push_back(Piece{Kind::Subtree, c, 0, m_view.blocks_below[c]});
+            } else {
+                walk_top(c);
+            }
+            m_slots.push_back(Slot{self, static_cast<int>(k), at});
+        }
+    }
+
+    const Bvh2View& m_view;
+    const std::uint32_t m_subtree_triangles;
+    std::vector<Piece> m_pieces;  // in the serial walk's order
+    std::vector<Slot> m_slots;
+};
+
+// Subtrees handed out as tasks hold at least this many triangles (fewer cost more to hand
+// out than they save), and there are about 8 per thread for the balance.
+constexpr std::uint32_t kMinSubtreeTriangles = 16384;
+
+template <class Node, std::uint32_t Width>
+WideBvhOf<Node> widen_tree(const FlatBvh& bvh, int threads)
 {
     WideBvhOf<Node> out;
     if (bvh.nodes.empty() || bvh.scene_triangle_count() == 0) {
@@ -200,22 +407,32 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh)
         out.blocks.push_back(empty_block());
         return out;
     }
-    Bvh2View view{bvh, {}, {}, 0, 0};
+    Bvh2View view{bvh, {}, {}, {}, 0};
     compute_ranges(view);
-    out.nodes.reserve(view.inner_bound + 1);
-    out.blocks.reserve(std::max<std::size_t>(view.block_count, 1));
-    Widener<Node, Width> widener(view, out);
+    const std::size_t blocks = view.blocks_below[0];
     if (view.becomes_leaf(0)) {
         // A root that is one leaf still needs an inner root: traversal starts at node 0.
         out.nodes.push_back(empty_node<Node, Width>());
-        const std::uint32_t ref = widener.leaf(0);
-        set_slot(out.nodes[0], 0, bvh.nodes[0], ref);
+        out.blocks.resize(blocks);
+        Widener<Node, Width> widener(view, out.nodes, out.blocks.data(), 0, blocks);
+        set_slot(out.nodes[0], 0, bvh.nodes[0], widener.leaf(0));
+        widener.done();
         return out;
     }
-    widener.inner(0);  // emits the root first, as node 0
-    if (out.blocks.size() != view.block_count)
-        throw std::logic_error("wide BVH: " + std::to_string(out.blocks.size()) + " blocks emitted, " +
-                               std::to_string(view.block_count) + " counted");
+    if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const std::size_t triangles = view.triangles(0);
+    if (threads > 1 && triangles >= 4 * std::size_t{kMinSubtreeTriangles}) {
+        const auto per_task = static_cast<std::uint32_t>(triangles / (8 * static_cast<std::size_t>(threads)));
+        TaskPool pool(threads);
+        SplicedCollapse<Node, Width>(view, std::max(kMinSubtreeTriangles, per_task)).run(pool, out);
+        return out;
+    }
+    check_reference_range(view.inner_bound + 1, blocks);
+    out.nodes.reserve(view.inner_bound + 1);
+    out.blocks.resize(blocks);
+    Widener<Node, Width> widener(view, out.nodes, out.blocks.data(), 0, blocks);
+    widener.inner(0);  // the root first, as node 0
+    widener.done();
     return out;
 }
 
@@ -242,23 +459,24 @@ void set_extent(dev::GcBvh8Node& root, float extent)
 }
 
 template <class Node, std::uint32_t Width>
-WideBvhOf<Node> widen_to(const FlatBvh& bvh)
+WideBvhOf<Node> widen_to(const FlatBvh& bvh, int threads)
 {
-    WideBvhOf<Node> out = widen_tree<Node, Width>(bvh);
+    if (threads < 0) throw std::invalid_argument("widen: threads = " + std::to_string(threads) + " (0: all cores)");
+    WideBvhOf<Node> out = widen_tree<Node, Width>(bvh, threads);
     set_extent(out.nodes[0], scene_extent(bvh));
     return out;
 }
 
 }  // namespace
 
-WideBvh widen(const FlatBvh& bvh)
+WideBvh widen(const FlatBvh& bvh, int threads)
 {
-    return widen_to<dev::GcBvh4Node, 4>(bvh);
+    return widen_to<dev::GcBvh4Node, 4>(bvh, threads);
 }
 
-Wide8Bvh widen8(const FlatBvh& bvh)
+Wide8Bvh widen8(const FlatBvh& bvh, int threads)
 {
-    return widen_to<dev::GcBvh8Node, 8>(bvh);
+    return widen_to<dev::GcBvh8Node, 8>(bvh, threads);
 }
 
 }  // namespace gc

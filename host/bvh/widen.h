@@ -31,8 +31,11 @@ using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h
 // leaf of ceil(count / 4) blocks; an inner node takes its two children and repeatedly opens
 // the child with the largest surface area that is not such a leaf, until it has four. The
 // BVH4 is never deeper than the BVH2, so gc_traverse4.h's stack bound holds.
-WideBvh widen(const FlatBvh& bvh);
-Wide8Bvh widen8(const FlatBvh& bvh);  // the same rules with eight children per node
+//
+// `threads` (0: all cores) only changes how fast: large trees are collapsed in subtrees on
+// several threads and spliced into the serial walk's order, the same bytes.
+WideBvh widen(const FlatBvh& bvh, int threads = 0);
+Wide8Bvh widen8(const FlatBvh& bvh, int threads = 0);  // the same rules with eight children per node
 
 // Bytes the layout occupies on a device.
 template <class Node>

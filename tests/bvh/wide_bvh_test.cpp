@@ -2,6 +2,7 @@
 // BVH2 it is collapsed from for leaf sizes 1 to 16 (the traversal tests in traverse_test.cpp
 // compare it with the BVH2 on every ray through compare_with_brute_force).
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -170,6 +171,34 @@ TEST(WideBvh, CoversEveryTriangleOnceForEveryLeafSize)
         check(widen8(bvh), "BVH8", s.nodes / 4);
         expect_agreement(compare_with_brute_force(bvh, scene, mixed_rays(scene, 3000, 22)), "wide vs brute force");
     }
+}
+
+template <class Bvh>
+bool same_wide_bytes(const Bvh& a, const Bvh& b)
+{
+    using Node = typename decltype(a.nodes)::value_type;
+    return a.nodes.size() == b.nodes.size() && a.blocks.size() == b.blocks.size() &&
+           std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(Node)) == 0 &&
+           std::memcmp(a.blocks.data(), b.blocks.data(), a.blocks.size() * sizeof(dev::GcTriangle4)) == 0;
+}
+
+// Large enough that the collapse runs in subtrees on several threads (at least 4 x 16384
+// triangles), which are then spliced into the serial walk's order: the same bytes as one
+// thread, for both widths and whatever the thread count.
+TEST(WideBvh, ThreadCountDoesNotChangeTheWideBvh)
+{
+    const Scene scene = random_soup(150000, 31, 0.02f);
+    const FlatBvh bvh = build_bvh(scene);
+    const WideBvh serial4 = widen(bvh, 1);
+    const Wide8Bvh serial8 = widen8(bvh, 1);
+    for (const int threads : {2, 3, 8}) {
+        EXPECT_TRUE(same_wide_bytes(serial4, widen(bvh, threads))) << "BVH4, " << threads << " threads";
+        EXPECT_TRUE(same_wide_bytes(serial8, widen8(bvh, threads))) << "BVH8, " << threads << " threads";
+    }
+    std::printf("[ wide, threads ] BVH4 %zu nodes / %zu blocks and BVH8 %zu nodes / %zu blocks compared byte for "
+                "byte with 1, 2, 3 and 8 threads\n",
+                serial4.nodes.size(), serial4.blocks.size(), serial8.nodes.size(), serial8.blocks.size());
+    check_wide(serial8, scene);
 }
 
 TEST(WideBvh, EmptyAndTinyScenes)
