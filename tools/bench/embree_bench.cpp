@@ -11,19 +11,13 @@
 #include <limits>
 
 #include "tools/bench/rays.h"
+#include "tools/bench/timing.h"
 #endif
 
 namespace gc::bench {
 
 #if defined(GC_HAVE_EMBREE)
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 RTCDevice new_device()
 {

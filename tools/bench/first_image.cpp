@@ -10,16 +10,10 @@
 #include "host/cl/device.h"
 #include "host/render/renderer.h"
 #include "tools/bench/bench_scenes.h"
+#include "tools/bench/timing.h"
 
 namespace gc::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string quoted(const std::string& s)
 {

@@ -34,11 +34,11 @@
 #include "tools/bench/ocl_bench.h"
 #include "tools/bench/packet_probe.h"
 #include "tools/bench/rays.h"
+#include "tools/bench/timing.h"
 
 namespace gc::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 
 // Anchors from issue 6 (measured independently; see the issue for conditions).
@@ -60,19 +60,6 @@ struct Options {
     std::string first_image_child; // the device key (device_key()) in the child process
     bool list_device_keys = false;  // child: print "<label>\t<key>" per selected device
 };
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> v)
-{
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 std::vector<std::string> split(const std::string& s)
 {

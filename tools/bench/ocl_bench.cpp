@@ -4,18 +4,9 @@
 #include <chrono>
 
 #include "host/render/renderer.h"
+#include "tools/bench/timing.h"
 
 namespace gc::bench {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh)
     : m_context(context),

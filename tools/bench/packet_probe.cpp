@@ -12,17 +12,12 @@
 #include "host/cl/buffer.h"
 #include "host/cl/kernel.h"
 #include "host/cl/program.h"
+#include "tools/bench/timing.h"
 
 namespace gc::bench {
 namespace {
 
 constexpr std::uint32_t kSeed = 12345u;
-
-double median(std::vector<double> v)
-{
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 // Structure-of-arrays inputs: positions in [-1, 1]^3, unit normals, albedos in [0.5, 1].
 std::array<std::vector<float>, 9> make_inputs(std::size_t count)
