@@ -45,6 +45,22 @@ struct Bvh2View {
     }
 };
 
+// The blocks of BVH2 subtree `n` as one wide leaf.
+std::uint32_t block_count(const Bvh2View& view, std::uint32_t n)
+{
+    return (view.triangles(n) + kBlockLanes - 1) / kBlockLanes;
+}
+
+// block_count for a subtree about to become a wide leaf, which one reference must address.
+std::uint32_t leaf_blocks(const Bvh2View& view, std::uint32_t n)
+{
+    const std::uint32_t blocks = block_count(view, n);
+    if (blocks == 0 || blocks > GC_BVH4_LEAF_MAX_BLOCKS)
+        throw std::logic_error("wide BVH: a leaf of " + std::to_string(view.triangles(n)) +
+                               " triangles does not fit one reference");
+    return blocks;
+}
+
 // Fills the per-node arrays bottom-up and counts inner_bound. Children always follow their
 // parent in the flat order (flatten's depth-first layout), so one backward sweep sees children
 // before parents; every entry is written.
@@ -65,7 +81,7 @@ void compute_ranges(Bvh2View& view)
             view.tri_end[i] = std::max(view.tri_end[first], view.tri_end[first + 1]);
         }
         if (view.becomes_leaf(node)) {
-            view.blocks_below[i] = (view.triangles(node) + kBlockLanes - 1) / kBlockLanes;
+            view.blocks_below[i] = block_count(view, node);
         } else {
             view.blocks_below[i] = view.blocks_below[first] + view.blocks_below[first + 1];
             ++view.inner_bound;
@@ -123,11 +139,6 @@ Node empty_node()
 std::uint32_t leaf_ref(std::size_t first_block, std::uint32_t blocks)
 {
     return GC_BVH4_LEAF | ((blocks - 1) << GC_BVH4_LEAF_COUNT_SHIFT) | static_cast<std::uint32_t>(first_block);
-}
-
-std::uint32_t block_count(const Bvh2View& view, std::uint32_t n)
-{
-    return (view.triangles(n) + kBlockLanes - 1) / kBlockLanes;
 }
 
 // Writes the blocks of BVH2 subtree `n` (a wide leaf) to out[0 .. block_count(n)).
@@ -207,10 +218,7 @@ public:
     // Emits the blocks of BVH2 subtree `n` and returns its leaf reference.
     std::uint32_t leaf(std::uint32_t n)
     {
-        const std::uint32_t blocks = block_count(m_view, n);
-        if (blocks == 0 || blocks > GC_BVH4_LEAF_MAX_BLOCKS)
-            throw std::logic_error("wide BVH: a leaf of " + std::to_string(m_view.triangles(n)) +
-                                   " triangles does not fit one reference");
+        const std::uint32_t blocks = leaf_blocks(m_view, n);
         const std::size_t first_block = m_next_block;
         if (first_block + blocks > m_end_block) done();
         write_blocks(m_view, n, m_blocks + first_block);
@@ -374,11 +382,7 @@ private:
             const std::uint32_t c = children[k];
             const std::size_t at = m_pieces.size();
             if (m_view.becomes_leaf(c)) {
-                const std::uint32_t blocks = block_count(m_view, c);
-                if (blocks > GC_BVH4_LEAF_MAX_BLOCKS)
-                    throw std::logic_error("wide BVH: a leaf of " + std::to_string(m_view.triangles(c)) +
-                                           " triangles does not fit one reference");
-                m_pieces.push_back(Piece{Kind::Leaf, c, 0, blocks});
+                m_pieces.push_back(Piece{Kind::Leaf, c, 0, leaf_blocks(m_view, c)});
             } else if (m_view.triangles(c) <= m_subtree_triangles) {
                 m_pieces.push_back(Piece{Kind::Subtree, c, 0, m_view.blocks_below[c]});
             } else {
