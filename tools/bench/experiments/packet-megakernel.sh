@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Reproduces the explicit-SIMD path tracer experiment (README.md here): builds two kernel
+# trees in a temporary directory, A = kernels/ and B = kernels/ with megakernel.cl replaced
+# by packet_megakernel.cl, checks that both render the same bits (Cornell box, and the dragon
+# when ../shared has it), then times both with tools/bench/kernel-ab.sh.
+#
+# Usage: tools/bench/experiments/packet-megakernel.sh [ROUNDS] [geocold-bench args...]
+#   ROUNDS      interleaved A/B rounds (default 3)
+#   bench args  default: --device cpu --scene cornell,dragon --no-rays --no-first-image
+#               --no-packet-probe --repeats 3
+# GEOCOLD_BENCH and GEOCOLD_CL pick the binaries (default: build/release, else build/bare).
+# Exit status: 0 when the bits match and the timing ran, 1 when the images differ.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../../.." && pwd)
+rounds=3
+if [ $# -gt 0 ] && [[ $1 =~ ^[0-9]+$ ]]; then rounds=$1; shift; fi
+[ $# -gt 0 ] || set -- --device cpu --scene cornell,dragon --no-rays --no-first-image --no-packet-probe --repeats 3
+
+pick() {
+    for b in "$root/build/release/$1" "$root/build/bare/$1"; do
+        if [ -x "$b" ]; then echo "$b"; return; fi
+    done
+}
+cl=${GEOCOLD_CL:-$(pick geocold-cl)}
+bench=${GEOCOLD_BENCH:-$(pick geocold-bench)}
+[ -n "$cl" ] && [ -n "$bench" ] || { echo "packet-megakernel: build geocold-cl and geocold-bench first (or set GEOCOLD_CL, GEOCOLD_BENCH)" >&2; exit 2; }
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp -r "$root/kernels" "$work/a"
+cp -r "$root/kernels" "$work/b"
+cp "$root/tools/bench/experiments/packet_megakernel.cl" "$work/b/megakernel.cl"
+
+# Same bits: the experiment's scope is untextured Lambert with triangle emitters or a
+# constant environment, which these two scenes are. --device cpu: the megakernel is the CPU form.
+same=0
+check() {
+    local name=$1
+    shift
+    GEOCOLD_KERNEL_DIR="$work/a" "$cl" --device cpu -q "$@" -o "$work/$name-a.pfm" 2>/dev/null
+    GEOCOLD_KERNEL_DIR="$work/b" "$cl" --device cpu -q "$@" -o "$work/$name-b.pfm" 2>/dev/null
+    if cmp -s "$work/$name-a.pfm" "$work/$name-b.pfm"; then
+        echo "bits: $name identical to the scalar megakernel"
+    else
+        echo "bits: $name DIFFERS from the scalar megakernel"
+        same=1
+    fi
+}
+check cornell "$root/scenes/cornell-box/CornellBox-Original.obj" --spp 4 --res 128x128
+dragon="${GEOCOLD_SHARED_DIR:-$root/../shared}/scenes/stanford-dragon-100k/dragon.obj"
+if [ -f "$dragon" ]; then
+    check dragon "$dragon" --env 1,1,1 --spp 2 --res 160x120
+fi
+
+GEOCOLD_BENCH=$bench "$root/tools/bench/kernel-ab.sh" "$work/a" "$work/b" "$rounds" "$@"
+exit $same
