@@ -8,6 +8,8 @@
 #   ROUNDS      interleaved A/B rounds (default 3)
 #   bench args  default: --device cpu --scene cornell,dragon --no-rays --no-first-image
 #               --no-packet-probe --repeats 3
+# PK_VARIANT picks what runs in packets besides the shading: shading (rays lane by lane),
+# shadow (default: shadow rays as packets), all (path rays too).
 # GEOCOLD_BENCH and GEOCOLD_CL pick the binaries (default: build/release, else build/bare).
 # Exit status: 0 when the bits match and the timing ran, 1 when the images differ.
 set -euo pipefail
@@ -29,7 +31,16 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp -r "$root/kernels" "$work/a"
 cp -r "$root/kernels" "$work/b"
-cp "$root/tools/bench/experiments/packet_megakernel.cl" "$work/b/megakernel.cl"
+case ${PK_VARIANT:-shadow} in
+    shading) shadow=0 closest=0 ;;
+    shadow) shadow=1 closest=0 ;;
+    all) shadow=1 closest=1 ;;
+    *) echo "packet-megakernel: PK_VARIANT must be shading, shadow or all" >&2; exit 2 ;;
+esac
+sed -e "s/^#define PK_PACKET_SHADOW .*/#define PK_PACKET_SHADOW $shadow/" \
+    -e "s/^#define PK_PACKET_CLOSEST .*/#define PK_PACKET_CLOSEST $closest/" \
+    "$root/tools/bench/experiments/packet_megakernel.cl" > "$work/b/megakernel.cl"
+echo "variant: ${PK_VARIANT:-shadow} (PK_PACKET_SHADOW $shadow, PK_PACKET_CLOSEST $closest)"
 
 # Same bits: the experiment's scope is untextured Lambert with triangle emitters or a
 # constant environment, which these two scenes are. --device cpu: the megakernel is the CPU form.
