@@ -102,6 +102,21 @@ static vf v3_dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 static vf v3_length(V3 a) { return sqrt(v3_dot(a, a)); }
 static vi v3_any_positive(V3 a) { return (a.x > 0.0f) | (a.y > 0.0f) | (a.z > 0.0f); }
 
+/* A float3 per lane, staged through memory: lanes are written one at a time, then read as
+ * three vectors (writing a vector's lane by index spilled the vector each time). */
+typedef struct {
+    float x[8], y[8], z[8];
+} PkStage3;
+
+static void pk_stage(PkStage3* s, uint k, float4 v)
+{
+    s->x[k] = v.x;
+    s->y[k] = v.y;
+    s->z[k] = v.z;
+}
+
+static V3 pk_staged(const PkStage3* s) { return v3(vload8(0, s->x), vload8(0, s->y), vload8(0, s->z)); }
+
 static vf pk_offset_component(vf p, vf n)
 {
     const vi of = convert_int8_rtz(256.0f * n);
@@ -521,28 +536,22 @@ __kernel void path_megakernel(const GcRenderParams params,
 
             /* The surface and its material, gathered per lane through private arrays (one
              * vector load per field; writing lanes of a vector by index spills it each time). */
-            float a_n0x[LANES], a_n0y[LANES], a_n0z[LANES], a_n1x[LANES], a_n1y[LANES], a_n1z[LANES];
-            float a_n2x[LANES], a_n2y[LANES], a_n2z[LANES], a_ngx[LANES], a_ngy[LANES], a_ngz[LANES];
-            float a_ar[LANES], a_ag[LANES], a_ab[LANES], a_er[LANES], a_eg[LANES], a_eb[LANES];
-            int a_two[LANES];
+            PkStage3 s_n0, s_n1, s_n2, s_ng, s_albedo, s_emission;
+            int s_two[LANES];
             for (uint k = 0u; k < LANES; ++k) {
                 const GcTriangleAttribs a = GC_ATTRIB(active[k] ? prim[k] : 0u);
                 const GcMaterial m = GC_MATERIAL(a.material);
-                a_n0x[k] = a.n0.x; a_n0y[k] = a.n0.y; a_n0z[k] = a.n0.z;
-                a_n1x[k] = a.n1.x; a_n1y[k] = a.n1.y; a_n1z[k] = a.n1.z;
-                a_n2x[k] = a.n2.x; a_n2y[k] = a.n2.y; a_n2z[k] = a.n2.z;
-                a_ngx[k] = a.ng.x; a_ngy[k] = a.ng.y; a_ngz[k] = a.ng.z;
-                a_ar[k] = m.albedo.x; a_ag[k] = m.albedo.y; a_ab[k] = m.albedo.z;
-                a_er[k] = m.emission.x; a_eg[k] = m.emission.y; a_eb[k] = m.emission.z;
-                a_two[k] = (m.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
+                pk_stage(&s_n0, k, a.n0);
+                pk_stage(&s_n1, k, a.n1);
+                pk_stage(&s_n2, k, a.n2);
+                pk_stage(&s_ng, k, a.ng);
+                pk_stage(&s_albedo, k, m.albedo);
+                pk_stage(&s_emission, k, m.emission);
+                s_two[k] = (m.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
             }
-            const V3 n0 = v3(vload8(0, a_n0x), vload8(0, a_n0y), vload8(0, a_n0z));
-            const V3 n1 = v3(vload8(0, a_n1x), vload8(0, a_n1y), vload8(0, a_n1z));
-            const V3 n2 = v3(vload8(0, a_n2x), vload8(0, a_n2y), vload8(0, a_n2z));
-            const V3 ng = v3(vload8(0, a_ngx), vload8(0, a_ngy), vload8(0, a_ngz));
-            const V3 albedo = v3(vload8(0, a_ar), vload8(0, a_ag), vload8(0, a_ab));
-            const V3 emission = v3(vload8(0, a_er), vload8(0, a_eg), vload8(0, a_eb));
-            const vi two_sided = vload8(0, a_two);
+            const V3 n0 = pk_staged(&s_n0), n1 = pk_staged(&s_n1), n2 = pk_staged(&s_n2), ng = pk_staged(&s_ng);
+            const V3 albedo = pk_staged(&s_albedo), emission = pk_staged(&s_emission);
+            const vi two_sided = vload8(0, s_two);
             /* gc_surface_at */
             const vf b0 = 1.0f - u - v;
             const V3 p = v3_add(org, v3_scale(dir, t));
@@ -581,27 +590,22 @@ __kernel void path_megakernel(const GcRenderParams params,
                     vu group = convert_uint8_rtz(ug);
                     group = SEL(group >= groups, (vu)(groups - 1u), group);
                     const vf ue = fmin(ug - convert_float8(group), 0.99999994f);
-                    float e_v0x[LANES], e_v0y[LANES], e_v0z[LANES], e_v1x[LANES], e_v1y[LANES], e_v1z[LANES];
-                    float e_v2x[LANES], e_v2y[LANES], e_v2z[LANES], e_ngx[LANES], e_ngy[LANES], e_ngz[LANES];
-                    float e_r[LANES], e_g[LANES], e_b[LANES];
-                    int e_two[LANES];
+                    PkStage3 s_v0, s_v1, s_v2, s_lng, s_le;
+                    int s_ltwo[LANES];
                     for (uint k = 0u; k < LANES; ++k) {
                         const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params.num_emitters, cont[k] ? ue[k] : 0.0f));
                         const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
                         const GcMaterial lm = GC_MATERIAL(la.material);
-                        e_v0x[k] = e.v0.x; e_v0y[k] = e.v0.y; e_v0z[k] = e.v0.z;
-                        e_v1x[k] = e.v1.x; e_v1y[k] = e.v1.y; e_v1z[k] = e.v1.z;
-                        e_v2x[k] = e.v2.x; e_v2y[k] = e.v2.y; e_v2z[k] = e.v2.z;
-                        e_ngx[k] = la.ng.x; e_ngy[k] = la.ng.y; e_ngz[k] = la.ng.z;
-                        e_r[k] = lm.emission.x; e_g[k] = lm.emission.y; e_b[k] = lm.emission.z;
-                        e_two[k] = (lm.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
+                        pk_stage(&s_v0, k, e.v0);
+                        pk_stage(&s_v1, k, e.v1);
+                        pk_stage(&s_v2, k, e.v2);
+                        pk_stage(&s_lng, k, la.ng);
+                        pk_stage(&s_le, k, lm.emission);
+                        s_ltwo[k] = (lm.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
                     }
-                    const V3 v0 = v3(vload8(0, e_v0x), vload8(0, e_v0y), vload8(0, e_v0z));
-                    const V3 v1 = v3(vload8(0, e_v1x), vload8(0, e_v1y), vload8(0, e_v1z));
-                    const V3 v2 = v3(vload8(0, e_v2x), vload8(0, e_v2y), vload8(0, e_v2z));
-                    const V3 lng = v3(vload8(0, e_ngx), vload8(0, e_ngy), vload8(0, e_ngz));
-                    const V3 le = v3(vload8(0, e_r), vload8(0, e_g), vload8(0, e_b));
-                    const vi l_two_sided = vload8(0, e_two);
+                    const V3 v0 = pk_staged(&s_v0), v1 = pk_staged(&s_v1), v2 = pk_staged(&s_v2);
+                    const V3 lng = pk_staged(&s_lng), le = pk_staged(&s_le);
+                    const vi l_two_sided = vload8(0, s_ltwo);
                     /* gc_sample_uniform_triangle */
                     const vi lower = r1 < r2;
                     const vf bb0 = SEL(lower, 0.5f * r1, r1 - 0.5f * r2);
