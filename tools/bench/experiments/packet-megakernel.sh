@@ -11,7 +11,8 @@
 # PK_VARIANT picks what runs in packets besides the shading: shading (rays lane by lane),
 # shadow (default: shadow rays as packets), all (path rays too).
 # GEOCOLD_BENCH and GEOCOLD_CL pick the binaries (default: build/release, else build/bare).
-# Exit status: 0 when the bits match and the timing ran, 1 when the images differ.
+# Exit status: 0 when the bits match and the timing ran, 1 when the images differ, 2 when a
+# render fails (its messages are shown).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 rounds=3
@@ -48,8 +49,14 @@ same=0
 check() {
     local name=$1
     shift
-    GEOCOLD_KERNEL_DIR="$work/a" "$cl" --device cpu -q "$@" -o "$work/$name-a.pfm" 2>/dev/null
-    GEOCOLD_KERNEL_DIR="$work/b" "$cl" --device cpu -q "$@" -o "$work/$name-b.pfm" 2>/dev/null
+    local side
+    for side in a b; do
+        if ! GEOCOLD_KERNEL_DIR="$work/$side" "$cl" --device cpu -q "$@" -o "$work/$name-$side.pfm" 2>"$work/log"; then
+            echo "packet-megakernel: rendering $name with kernel tree $side failed:" >&2
+            cat "$work/log" >&2
+            exit 2
+        fi
+    done
     if cmp -s "$work/$name-a.pfm" "$work/$name-b.pfm"; then
         echo "bits: $name identical to the scalar megakernel"
     else
