@@ -24,6 +24,7 @@ struct DeviceInfo {
     cl_uint compute_units = 0;
     cl_ulong global_mem = 0;
     cl_ulong max_alloc = 0;  // largest single buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE)
+    cl_uint base_addr_align = 0;  // bytes a buffer's base must be aligned to (CL_DEVICE_MEM_BASE_ADDR_ALIGN / 8)
     cl_ulong local_mem = 0;
     size_t max_work_group_size = 0;
     cl_uint preferred_vector_width_float = 1;  // picks the default work-group size on CPUs

@@ -42,14 +42,18 @@ DeviceBvh DeviceBvh::upload(const cl::Context& context, const FlatBvh& bvh, BvhL
 {
     DeviceBvh d;
     d.m_layout = layout;
+    // The wide layouts are built here and owned by the DeviceBvh, so CPUs can trace them in
+    // place; a GPU copies them (over_host falls back) and the host arrays are dropped.
     if (layout == BvhLayout::Wide) {
-        const WideBvh wide = widen(bvh);
-        d.m_wide_nodes = cl::read_only_buffer(context, wide.nodes, "bvh4 nodes");
-        d.m_wide_blocks = cl::read_only_buffer(context, wide.blocks, "bvh4 triangle blocks");
+        auto wide = std::make_shared<const WideBvh>(widen(bvh));
+        d.m_wide_nodes = cl::Buffer<dev::GcBvh4Node>::over_host(context, wide->nodes, "bvh4 nodes");
+        d.m_wide_blocks = cl::Buffer<dev::GcTriangle4>::over_host(context, wide->blocks, "bvh4 triangle blocks");
+        if (context.device().is_cpu) d.m_host_arrays = std::move(wide);
     } else if (layout == BvhLayout::Wide8) {
-        const Wide8Bvh wide = widen8(bvh);
-        d.m_wide8_nodes = cl::read_only_buffer(context, wide.nodes, "bvh8 nodes");
-        d.m_wide_blocks = cl::read_only_buffer(context, wide.blocks, "bvh8 triangle blocks");
+        auto wide = std::make_shared<const Wide8Bvh>(widen8(bvh));
+        d.m_wide8_nodes = cl::Buffer<dev::GcBvh8Node>::over_host(context, wide->nodes, "bvh8 nodes");
+        d.m_wide_blocks = cl::Buffer<dev::GcTriangle4>::over_host(context, wide->blocks, "bvh8 triangle blocks");
+        if (context.device().is_cpu) d.m_host_arrays = std::move(wide);
     } else {
         d.m_nodes = cl::read_only_buffer(context, bvh.nodes, "bvh nodes");
         d.m_triangles = cl::read_only_buffer(context, bvh.triangles, "bvh triangles");

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "host/bvh/flatten.h"
@@ -40,6 +41,9 @@ public:
 
 private:
     BvhLayout m_layout = BvhLayout::Binary;
+    // The wide BVH's host arrays, which CPU devices read in place (cl::Buffer::over_host).
+    // Declared before the buffers so that they are released first.
+    std::shared_ptr<const void> m_host_arrays;
     cl::Buffer<dev::GcBvhNode> m_nodes;
     cl::Buffer<dev::GcTriangle> m_triangles;
     cl::Buffer<dev::GcBvh4Node> m_wide_nodes;

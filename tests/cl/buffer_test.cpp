@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <memory>
+#include <new>
 #include <numeric>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +53,43 @@ TEST_F(DeviceTest, BufferRoundTrip)
     EXPECT_FALSE(buffer);
     moved.read(back);
     EXPECT_EQ(back[500], 7.0f);
+}
+
+// over_host: a CPU device reads the host array in place (the buffer's CL_MEM_HOST_PTR is the
+// array itself); a GPU, or an array whose base the device would not accept, gets a copy.
+// Either way the buffer holds the array's contents. Every device present is tried.
+TEST_F(DeviceTest, BufferOverHostReadsTheArrayInPlaceOnCpus)
+{
+    constexpr std::size_t count = 4096;
+    constexpr std::size_t align = 4096;
+    struct Free {
+        void operator()(float* p) const { ::operator delete(p, std::align_val_t{align}); }
+    };
+    const std::unique_ptr<float, Free> raw(
+        static_cast<float*>(::operator new((count + 1) * sizeof(float), std::align_val_t{align})));
+    std::iota(raw.get(), raw.get() + count + 1, 0.5f);
+    for (const DeviceInfo& device : devices) {
+        const Context device_context(device);
+        for (const std::size_t offset : {std::size_t{0}, std::size_t{1}}) {  // aligned, then 4 bytes off
+            const std::span<const float> data(raw.get() + offset, count);
+            auto buffer = Buffer<float>::over_host(device_context, data, "over host");
+            void* host_ptr = nullptr;
+            ASSERT_EQ(clGetMemObjectInfo(buffer.mem(), CL_MEM_HOST_PTR, sizeof(host_ptr), &host_ptr, nullptr),
+                      CL_SUCCESS);
+            const bool in_place = host_ptr == static_cast<const void*>(data.data());
+            const bool expected = device.is_cpu && offset == 0 && device.base_addr_align > 0 &&
+                                  align % device.base_addr_align == 0;
+            std::vector<float> back(count);
+            buffer.read(back);
+            std::size_t same = 0;
+            for (std::size_t i = 0; i < count; ++i) same += back[i] == data[i] ? 1 : 0;
+            std::printf("[over_host] %s (asks %u-byte bases), base offset %zu bytes: %s, %zu of %zu elements read back\n",
+                        device.device_name.c_str(), device.base_addr_align, offset * sizeof(float),
+                        in_place ? "in place" : "copied", same, count);
+            EXPECT_EQ(in_place, expected) << device.device_name;
+            EXPECT_EQ(same, count) << device.device_name;
+        }
+    }
 }
 
 TEST_F(DeviceTest, BufferZeroSize)
