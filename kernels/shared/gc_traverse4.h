@@ -181,15 +181,6 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
                             gc_and4(gc_and4(gc_le4(eu, zero), gc_le4(ev, zero)), gc_le4(ew, zero)));
     float4 det = eu + ev + ew;
 
-    /* Noise floor. s3 is the largest |vertex - origin| coordinate: a maximum is exact, so
-     * taking it over the world axes in any order gives gc_intersect_triangle's value. */
-    float4 s2 = gc_max4(gc_max4(gc_abs_max4(ax, ay), gc_abs_max4(bx, by)), gc_abs_max4(cx, cy));
-    float4 m0 = gc_max4(gc_abs_max4(a0, b0), fabs(c0));
-    float4 m1 = gc_max4(gc_abs_max4(a1, b1), fabs(c1));
-    float4 m2 = gc_max4(gc_abs_max4(a2, b2), fabs(c2));
-    float4 s3 = gc_max4(m0, gc_max4(m1, m2));
-    GcMask4 solid = gc_gt4(fabs(det), GC_TRI_DET_EPS * (s2 * (s2 + s3)));
-
     float4 tz = eu * (sz * az) + ev * (sz * bz) + ew * (sz * cz);
     float4 rcp = 1.0f / det;
     GcTriangleHits4 h;
@@ -197,10 +188,25 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
     h.u = ev * rcp;
     h.v = ew * rcp;
     GcMask4 in_range = gc_and4(gc_ge4(h.t, gc_splat4(r.org.w)), gc_le4(h.t, gc_splat4(tmax)));
-    /* Unused lanes (prim GC_INVALID) have zero area and fail `solid` already; the empty
-     * scene's dummy block is excluded here too, as the BVH2 loop excludes its dummy. */
+    /* Unused lanes (prim GC_INVALID) have zero area and would fail the noise floor below;
+     * the empty scene's dummy block is excluded here too, as the BVH2 loop excludes its
+     * dummy. */
     GcMask4 real = gc_ne4u(q.prim, make_uint4(GC_INVALID, GC_INVALID, GC_INVALID, GC_INVALID));
-    h.hit = gc_and4(gc_and4(inside, solid), gc_and4(in_range, real));
+    h.hit = gc_and4(inside, gc_and4(in_range, real));
+    /* Noise floor (gc_intersect_triangle), computed only for blocks with a candidate left:
+     * most blocks a ray opens have none (no lane inside, or only farther than t_best), and
+     * the floor is a fifth of the test. PoCL 5, 16 cores, 8 interleaved rounds: Cornell
+     * shadow rays 1.12x, diffuse and primary 1.06x, dragon shadow 1.06x, paths 1.01-1.02x. */
+    if (gc_any4(h.hit)) {
+        /* s3 is the largest |vertex - origin| coordinate: a maximum is exact, so taking it
+         * over the world axes in any order gives gc_intersect_triangle's value. */
+        float4 s2 = gc_max4(gc_max4(gc_abs_max4(ax, ay), gc_abs_max4(bx, by)), gc_abs_max4(cx, cy));
+        float4 m0 = gc_max4(gc_abs_max4(a0, b0), fabs(c0));
+        float4 m1 = gc_max4(gc_abs_max4(a1, b1), fabs(c1));
+        float4 m2 = gc_max4(gc_abs_max4(a2, b2), fabs(c2));
+        float4 s3 = gc_max4(m0, gc_max4(m1, m2));
+        h.hit = gc_and4(h.hit, gc_gt4(fabs(det), GC_TRI_DET_EPS * (s2 * (s2 + s3))));
+    }
     return h;
 }
 

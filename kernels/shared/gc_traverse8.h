@@ -27,24 +27,21 @@ GC_NAMESPACE_BEGIN
 #if defined(GC_OPENCL)
 #define gc_join8(a, b) ((float8)((a), (b)))
 
-/* gc_box4_entry for eight boxes: per lane the same operations. */
-GC_FUNC float8 gc_box8_entry(GcRayPre r, float tmax, GcBvh8Node n)
+/* gc_box4_entry for eight boxes: per lane the same operations. Each axis's near and far
+ * planes are loaded straight from the node at per-ray float offsets (near_x is 0, lo_x, when
+ * the direction's x is not negative, else 8, hi_x; far is the other: near ^ 8), as Embree's
+ * nearX/farX offsets do, instead of loading both planes and selecting one per lane: six
+ * blends fewer per node. PoCL 5, 16 cores, 8 interleaved rounds against the selecting form:
+ * paths 1.03x on the Cornell box and the dragon, diffuse rays 1.04x, primary rays 0.99x. */
+GC_FUNC float8 gc_box8_entry(GcRayPre r, float tmax, GC_GLOBAL const float* node, uint near_x, uint near_y,
+                             uint near_z)
 {
-    bool px = r.inv_dir.x >= 0.0f;
-    bool py = r.inv_dir.y >= 0.0f;
-    bool pz = r.inv_dir.z >= 0.0f;
-    float8 lo_x = gc_join8(n.lo_x0, n.lo_x1);
-    float8 hi_x = gc_join8(n.hi_x0, n.hi_x1);
-    float8 lo_y = gc_join8(n.lo_y0, n.lo_y1);
-    float8 hi_y = gc_join8(n.hi_y0, n.hi_y1);
-    float8 lo_z = gc_join8(n.lo_z0, n.lo_z1);
-    float8 hi_z = gc_join8(n.hi_z0, n.hi_z1);
-    float8 nx = (px ? lo_x : hi_x) - r.org.x;
-    float8 fx = (px ? hi_x : lo_x) - r.org.x;
-    float8 ny = (py ? lo_y : hi_y) - r.org.y;
-    float8 fy = (py ? hi_y : lo_y) - r.org.y;
-    float8 nz = (pz ? lo_z : hi_z) - r.org.z;
-    float8 fz = (pz ? hi_z : lo_z) - r.org.z;
+    float8 nx = vload8(0, node + near_x) - r.org.x;
+    float8 fx = vload8(0, node + (near_x ^ 8u)) - r.org.x;
+    float8 ny = vload8(0, node + near_y) - r.org.y;
+    float8 fy = vload8(0, node + (near_y ^ 8u)) - r.org.y;
+    float8 nz = vload8(0, node + near_z) - r.org.z;
+    float8 fz = vload8(0, node + (near_z ^ 8u)) - r.org.z;
     float8 tnear = (float8)(r.org.w);
     float8 t;
     t = nx * r.inv_dir.x;
@@ -104,11 +101,17 @@ inline GcEntries8 gc_box8_entry(GcRayPre r, float tmax, const GcBvh8Node& n)
 GC_WIDE_TRACE_BEGIN
 {
     GC_WIDE_TRACE_SETUP(GC_BVH8_STACK_SIZE, GC_BVH_NODE(0u).pad0.x)
+#if defined(GC_OPENCL)
+    /* gc_box8_entry's plane offsets in GcBvh8Node (gc_types.h): lo_x 0, hi_x 8, lo_y 16... */
+    const uint near_x = r.inv_dir.x >= 0.0f ? 0u : 8u;
+    const uint near_y = r.inv_dir.y >= 0.0f ? 16u : 24u;
+    const uint near_z = r.inv_dir.z >= 0.0f ? 32u : 40u;
+#endif
     for (;;) {
         if ((ref & GC_BVH4_LEAF) == 0u) {
             GcBvh8Node n = GC_BVH_NODE(ref);
 #if defined(GC_OPENCL)
-            float8 e = gc_box8_entry(r, t_best, n);
+            float8 e = gc_box8_entry(r, t_best, (GC_GLOBAL const float*)&GC_BVH_NODE(ref), near_x, near_y, near_z);
 #else
             GcEntries8 e = gc_box8_entry(r, t_best, n);
 #endif

@@ -69,8 +69,9 @@ GC_STRUCT(GcBvh4Node) {
 
 /* BVH8 node, 256 bytes, for CPUs with 8-wide SIMD (AVX2, AVX-512): the BVH4 node with eight
  * slots, each quantity split into lanes 0-3 (…0) and 4-7 (…1) so that the struct keeps to
- * float4/uint4 fields (gc_platform.h); the OpenCL traversal joins each pair into a float8
- * (gc_traverse8.h). Child references and leaves as in GcBvh4Node. */
+ * float4/uint4 fields (gc_platform.h); the OpenCL traversal reads each pair as one float8
+ * (gc_traverse8.h), at float offsets lo_x 0, hi_x 8, lo_y 16, hi_y 24, lo_z 32, hi_z 40:
+ * keep the bounds in this order. Child references and leaves as in GcBvh4Node. */
 GC_STRUCT(GcBvh8Node) {
     float4 lo_x0;
     float4 lo_x1;
