@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "host/app/consistency_report.h"
+#include "host/app/lighting_check.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
@@ -123,6 +124,7 @@ ExitCode run_consistency(const Options& options)
     LoadOptions load_options;
     load_options.gltf_scene = options.gltf_scene;
     const Scene scene = load_scene(options.scene_path, load_options);
+    if (const auto warning = unlit_scene_warning(scene, settings)) log_warning(*warning);
     CameraOverrides overrides;
     overrides.look_from = options.look_from;
     overrides.look_at = options.look_at;

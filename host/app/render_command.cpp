@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "host/app/interrupt.h"
+#include "host/app/lighting_check.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
@@ -71,6 +72,7 @@ ExitCode run_render(const Options& options)
     const Scene scene = load_scene(options.scene_path, load_options);
     log_verbose("loaded " + options.scene_path + ": " + std::to_string(scene.triangle_count()) + " triangles, " +
                 std::to_string(scene.materials.size()) + " materials in " + fixed(seconds_since(t0), 3) + " s");
+    if (const auto warning = unlit_scene_warning(scene, settings)) log_warning(*warning);
 
     CameraOverrides overrides;
     overrides.look_from = options.look_from;

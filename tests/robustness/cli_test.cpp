@@ -147,6 +147,41 @@ TEST(Cli, BadKernelFeaturesVariableIsAUsageError)
     expect_env_usage_error("GEOCOLD_KERNEL_FEATURES", "none", "GEOCOLD_KERNEL_FEATURES must be 'scene' or 'all', not 'none'");
 }
 
+// A glTF model shipped without lights (the usual case) under the default black environment
+// renders black: the user hears so before the render, with the way out, and the render still
+// runs (exit 0). A lit scene and an --env say nothing.
+TEST(Cli, UnlitSceneIsWarnedAboutBeforeRendering)
+{
+    if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
+    const TempDir dir;
+    const std::string box = (std::filesystem::path(GC_TEST_SOURCE_DIR) / "tests/data/scenes/box-textured/BoxTextured.gltf").string();
+    const std::vector<std::string> small = {"--spp", "1", "--res", "16x16", "--device", "cpu", "-o", (dir / "out.pfm").string()};
+    struct Case {
+        std::string what;
+        std::vector<std::string> args;
+        bool warned;
+    };
+    const std::vector<Case> cases = {
+        {"BoxTextured.gltf", {box}, true},
+        {"BoxTextured.gltf --integrator whitted", {box, "--integrator", "whitted"}, true},
+        {"BoxTextured.gltf --env 1,1,1", {box, "--env", "1,1,1"}, false},
+        {"BoxTextured.gltf --aov albedo", {box, "--aov", "albedo"}, false},
+        {"CornellBox-Original.obj", {k_cornell.string()}, false},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> args = c.args;
+        args.insert(args.end(), small.begin(), small.end());
+        const RunResult r = run_process(cli_path(), args, cli_options());
+        show(c.what.c_str(), r);
+        EXPECT_EQ(r.exit_code, 0) << c.what << "\n" << r.err;
+        const bool warned = r.err.find("nothing lights this scene") != std::string::npos;
+        EXPECT_EQ(warned, c.warned) << c.what << "\n" << r.err;
+        if (c.warned) {
+            EXPECT_NE(r.err.find("BoxTextured.gltf: nothing lights"), std::string::npos) << r.err;
+        }
+    }
+}
+
 // A full disk, simulated with RLIMIT_FSIZE (writes past the limit fail with EFBIG): the
 // write fails after the render, and the previous image must survive byte for byte.
 TEST(Cli, FullDiskKeepsThePreviousImage)
