@@ -1,6 +1,7 @@
 // geocold-cl: the command-line renderer. Turns every failure into one message on stderr and
 // the exit code documented in --help.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 #include <string>
@@ -10,7 +11,9 @@
 #include "host/app/options.h"
 #include "host/app/render_command.h"
 #include "host/app/vk_commands.h"
+#include "host/cl/device.h"
 #include "host/util/error.h"
+#include "host/util/host_threads.h"
 #include "host/util/log.h"
 
 int main(int argc, char** argv)
@@ -27,6 +30,13 @@ int main(int argc, char** argv)
             return 0;
         }
         set_log_level(options.quiet ? LogLevel::Quiet : (options.verbose ? LogLevel::Verbose : LogLevel::Normal));
+        if (options.threads > 0) {
+            // Before any OpenCL or Vulkan call: PoCL reads its thread count when it is first
+            // loaded, lavapipe (LP_NUM_THREADS) when its device is created.
+            set_host_thread_count(options.threads);
+            cl::limit_cpu_device_threads(options.threads);
+            setenv("LP_NUM_THREADS", std::to_string(options.threads).c_str(), 1);
+        }
         if (options.list_devices) return static_cast<int>(run_list_devices());
         if (options.preview) return static_cast<int>(run_preview(options));
         if (!options.cross_check.empty()) return static_cast<int>(run_cross_check(options));

@@ -13,6 +13,7 @@ namespace {
 constexpr int kMaxResolution = 16384;
 constexpr unsigned long kMaxSpp = 1u << 24;
 constexpr unsigned long kMaxDepth = 1024;
+constexpr unsigned long kMaxThreads = 4096;
 
 [[noreturn]] void bad_value(const std::string& option, const std::string& value, const std::string& expected)
 {
@@ -157,6 +158,7 @@ Options parse_options(const std::vector<std::string>& args)
             o.render.env_radiance = scale;
             o.env_scale_given = true;
         }
+        else if (arg == "--threads") o.threads = static_cast<int>(parse_count(arg, value(), 1, kMaxThreads));
         else if (arg == "--wavefront-size")
             o.render.wavefront_size = static_cast<std::uint32_t>(parse_count(arg, value(), 1024, 1u << 26));
         else if (arg == "--look-from") o.look_from = Point3(parse_triple(arg, value()));
@@ -210,6 +212,8 @@ Device:
   -d, --device SPEC        any | gpu | cpu | <index> | <name substring>   (default: any,
                            which prefers a GPU)
       --list-devices       list the OpenCL devices and exit
+      --threads N          CPU threads: PoCL's workers on CPU devices, lavapipe's, and the
+                           BVH build (default: every core)
       --vk-device SPEC     Vulkan device for --preview / --cross-check: any | lavapipe |
                            <name substring>   (default: any, which prefers a GPU)
 Rendering:

@@ -30,6 +30,7 @@ struct Options {
     std::string json_path;        // --json FILE: the consistency report as JSON
     std::string heatmap_dir;      // --heatmap DIR: a difference heat map per device pair
     bool res_given = false;       // --res / --width / --height given (consistency's default is 128x128)
+    int threads = 0;              // --threads: CPU threads (host and PoCL); 0 = every core
 
     RenderSettings render;
 

@@ -13,6 +13,7 @@
 #include "host/bvh/simd4.h"
 #include "host/bvh/task_pool.h"
 #include "host/util/error.h"
+#include "host/util/host_threads.h"
 
 namespace gc {
 namespace {
@@ -579,7 +580,7 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
     if (count == 0) return tree;
 
     int threads = options.threads;
-    if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (threads == 0) threads = host_thread_count();
     // Threads beyond what the scene can keep busy would only cost their start.
     threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), 1 + count / kMinTaskPrims));
     TaskPool pool(threads);

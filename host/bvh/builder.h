@@ -27,7 +27,7 @@ struct BvhBuildOptions {
     // bvh_stats' sah_cost compares with Embree's quality figure out of the box.
     float traversal_cost = 1.0f;
     float intersection_cost = 1.0f;
-    int threads = 0;               // 0: std::thread::hardware_concurrency()
+    int threads = 0;               // 0: host_thread_count() (every core unless --threads)
 };
 
 // A node of the build tree, with the same meaning as GcBvhNode: an inner node's children are

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "gc_accessors.h"
+#include "host/util/host_threads.h"
 
 namespace gc {
 namespace {
@@ -125,7 +126,7 @@ FlatBvh flatten(const BvhTree& tree, const Scene& scene)
     // triangles are made on the other cores meanwhile. 5.2M triangles on 2 cores: 0.35-0.44 s
     // one after the other (1.0 core busy on average), 0.22-0.25 s overlapped.
     FlatBvh flat;
-    const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+    const auto cores = static_cast<std::size_t>(host_thread_count());
     if (cores < 2 || tree.prim_indices.size() < kTriangleChunk) {
         make_triangles(tree, scene, flat.triangles, cores);
         flat.nodes = flatten_nodes(tree);

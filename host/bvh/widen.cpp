@@ -11,6 +11,7 @@
 
 #include "gc_accessors.h"
 #include "host/bvh/task_pool.h"
+#include "host/util/host_threads.h"
 
 namespace gc {
 namespace {
@@ -423,7 +424,7 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh, int threads)
         widener.done();
         return out;
     }
-    if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (threads == 0) threads = host_thread_count();
     const std::size_t triangles = view.triangles(0);
     if (threads > 1 && triangles >= 4 * std::size_t{kMinSubtreeTriangles}) {
         const auto per_task = static_cast<std::uint32_t>(triangles / (8 * static_cast<std::size_t>(threads)));

@@ -34,7 +34,7 @@ using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h
 //
 // `threads` (0: all cores) only changes how fast: large trees are collapsed in subtrees on
 // several threads and spliced into the serial walk's order, the same bytes.
-WideBvh widen(const FlatBvh& bvh, int threads = 0);
+WideBvh widen(const FlatBvh& bvh, int threads = 0);  // 0: host_thread_count()
 Wide8Bvh widen8(const FlatBvh& bvh, int threads = 0);  // the same rules with eight children per node
 
 // Bytes the layout occupies on a device.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 
 #include "host/cl/error.h"
 #include "host/util/log.h"
@@ -214,6 +215,12 @@ std::string format_device_list(const std::vector<DeviceInfo>& devices)
                      format_bytes(d.max_alloc));
     }
     return table;
+}
+
+void limit_cpu_device_threads(int threads)
+{
+    const std::string value = std::to_string(std::max(1, threads));
+    for (const char* name : {"POCL_CPU_MAX_CU_COUNT", "POCL_MAX_PTHREAD_COUNT"}) setenv(name, value.c_str(), 1);
 }
 
 }  // namespace gc::cl

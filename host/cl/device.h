@@ -52,4 +52,9 @@ DeviceInfo select_device(const std::string& spec, const std::vector<DeviceInfo>&
 // units, global memory, max single allocation. One line per device plus a header.
 std::string format_device_list(const std::vector<DeviceInfo>& devices);
 
+// Caps the worker threads of PoCL's CPU device at `threads` (POCL_CPU_MAX_CU_COUNT, and
+// POCL_MAX_PTHREAD_COUNT for PoCL before 4.0). PoCL reads them once, when the ICD loader
+// first loads it, so call this before any other OpenCL call. Other drivers ignore them.
+void limit_cpu_device_threads(int threads);
+
 }  // namespace gc::cl

@@ -34,6 +34,7 @@ TEST(Options, Defaults)
     EXPECT_EQ(o.render.height, 512);
     EXPECT_EQ(o.render.spp, 64u);
     EXPECT_EQ(o.render.max_depth, 8u);
+    EXPECT_EQ(o.threads, 0);
     EXPECT_TRUE(o.output_path.empty());
 }
 
@@ -42,7 +43,7 @@ TEST(Options, EveryOptionParses)
     const Options o = parse({"--device", "gpu", "-o", "x.exr", "--integrator=whitted", "--spp", "9", "--seed", "3",
                              "--max-depth", "4", "--rr-depth", "2", "--time-limit", "1.5", "--res", "64x32",
                              "--env", "1,0.5,0.25", "--look-from", "0,1,4", "--look-at", "0,1,0", "--up", "0,1,0",
-                             "--fov", "45", "--gltf-scene", "2", "--quiet", "scene.glb"});
+                             "--fov", "45", "--gltf-scene", "2", "--quiet", "--threads", "3", "scene.glb"});
     EXPECT_EQ(o.device, "gpu");
     EXPECT_EQ(o.output_path, "x.exr");
     EXPECT_EQ(o.render.integrator, IntegratorKind::Whitted);
@@ -60,6 +61,7 @@ TEST(Options, EveryOptionParses)
     EXPECT_EQ(*o.fov_degrees, 45.0f);
     EXPECT_EQ(o.gltf_scene, 2);
     EXPECT_TRUE(o.quiet);
+    EXPECT_EQ(o.threads, 3);
     EXPECT_EQ(o.scene_path, "scene.glb");
 }
 
@@ -98,6 +100,8 @@ TEST(Options, BadInputIsAUsageErrorNamingTheOption)
     EXPECT_NE(usage_error({"--up", "0,0,0", "s.obj"}).find("--up"), std::string::npos);
     EXPECT_NE(usage_error({"--look-from", "1,1,1", "--look-at", "1,1,1", "s.obj"}).find("differ"), std::string::npos);
     EXPECT_NE(usage_error({"s.obj", "--spp"}).find("needs a value"), std::string::npos);
+    EXPECT_NE(usage_error({"--threads", "0", "s.obj"}).find("--threads expects an integer in [1, 4096]"), std::string::npos);
+    EXPECT_NE(usage_error({"--threads", "all", "s.obj"}).find("--threads"), std::string::npos);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // The command line against a hostile user: bad options, bad output paths, a full disk.
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -145,6 +147,48 @@ TEST(Cli, BadBvhWidthVariableIsAUsageError)
 TEST(Cli, BadKernelFeaturesVariableIsAUsageError)
 {
     expect_env_usage_error("GEOCOLD_KERNEL_FEATURES", "none", "GEOCOLD_KERNEL_FEATURES must be 'scene' or 'all', not 'none'");
+}
+
+// The CU count in the CPU row of --list-devices, read under the table's "CUs" header (the
+// column is right-aligned and ends where the header does); -1 if there is no CPU row.
+int cpu_compute_units(const std::string& table)
+{
+    std::istringstream lines(table);
+    std::string line;
+    std::size_t end = std::string::npos;
+    while (std::getline(lines, line)) {
+        if (end == std::string::npos) {
+            const std::size_t at = line.find(" CUs ");
+            if (at != std::string::npos) end = at + 4;
+            continue;
+        }
+        if (line.find(" cpu ") == std::string::npos || line.size() < end) continue;
+        return std::atoi(line.substr(end - 4, 4).c_str());
+    }
+    return -1;
+}
+
+// --threads caps PoCL's CPU workers: the CPU device then reports that many compute units.
+TEST(Cli, ThreadsCapsTheCpuDevice)
+{
+    if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
+    const RunResult all = run_process(cli_path(), {"--list-devices"}, cli_options());
+    ASSERT_EQ(all.exit_code, 0) << all.err;
+    const int cores = cpu_compute_units(all.out);
+    std::printf("  --list-devices: CPU device with %d compute units\n", cores);
+    if (cores < 2) GTEST_SKIP() << "one core: nothing to cap";
+    const RunResult one = run_process(cli_path(), {"--threads", "1", "--list-devices"}, cli_options());
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    std::printf("  --threads 1 --list-devices: %d compute units\n", cpu_compute_units(one.out));
+    EXPECT_EQ(cpu_compute_units(one.out), 1) << one.out;
+
+    // And a render under the cap still works.
+    const TempDir dir;
+    const RunResult r = run_process(cli_path(), {k_cornell.string(), "--threads", "1", "--spp", "1", "--res", "16x16",
+                                                 "--device", "cpu", "-o", (dir / "one.pfm").string()},
+                                    cli_options());
+    show("--threads 1 render", r);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
 // A glTF model shipped without lights (the usual case) under the default black environment
