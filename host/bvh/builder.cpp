@@ -8,7 +8,6 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "host/bvh/simd4.h"
 #include "host/bvh/task_pool.h"

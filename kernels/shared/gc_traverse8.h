@@ -25,7 +25,6 @@
 GC_NAMESPACE_BEGIN
 
 #if defined(GC_OPENCL)
-#define gc_join8(a, b) ((float8)((a), (b)))
 
 /* gc_box4_entry for eight boxes: per lane the same operations. Each axis's near and far
  * planes are loaded straight from the node at per-ray float offsets (near_x is 0, lo_x, when

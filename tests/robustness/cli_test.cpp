@@ -1,8 +1,8 @@
 // The command line against a hostile user: bad options, bad output paths, a full disk.
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <filesystem>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
