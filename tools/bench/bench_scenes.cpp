@@ -93,7 +93,7 @@ std::optional<BenchScene> load_bench_scene(const std::string& name, const std::s
         s.env = glm::vec3(0.2f);
         return s;
     }
-    throw UsageError("geocold-bench: unknown scene '" + name + "' (known: cornell, bunny, dragon, large, tiny)");
+    throw UsageError("unknown scene '" + name + "' (known: cornell, bunny, dragon, large, tiny)");
 }
 
 }  // namespace gc::bench

@@ -1,6 +1,7 @@
 #include "tools/bench/embree_bench.h"
 
 #include "host/util/error.h"
+#include "host/util/host_threads.h"
 
 #if defined(GC_HAVE_EMBREE)
 #include <embree3/rtcore.h>
@@ -19,9 +20,11 @@ namespace gc::bench {
 #if defined(GC_HAVE_EMBREE)
 namespace {
 
+// Embree's build threads follow the bench's cap (--threads), so both sides get the same cores.
 RTCDevice new_device()
 {
-    RTCDevice device = rtcNewDevice(nullptr);
+    const std::string config = "threads=" + std::to_string(host_thread_count());
+    RTCDevice device = rtcNewDevice(config.c_str());
     if (!device) throw DeviceError("Embree: rtcNewDevice failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
     return device;
 }

@@ -4,7 +4,7 @@
 //
 //   geocold-bench [--device all|SPEC] [--scene cornell,bunny,dragon,large] [--quick] [--json]
 //                 [--repeats N] [--rays SIDE] [--no-path] [--no-rays] [--no-first-image]
-//                 [--no-packet-probe]
+//                 [--no-packet-probe] [--threads N]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,7 +16,6 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <unistd.h>
@@ -28,6 +27,7 @@
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/util/error.h"
+#include "host/util/host_threads.h"
 #include "tools/bench/bench_scenes.h"
 #include "tools/bench/embree_bench.h"
 #include "tools/bench/first_image.h"
@@ -57,6 +57,7 @@ struct Options {
     bool packet_probe = true;
     bool rays = true;
     bool first_image = true;
+    int threads = 0;                // --threads: 0 = every core
     std::string first_image_child; // the device key (device_key()) in the child process
     bool list_device_keys = false;  // child: print "<label>\t<key>" per selected device
 };
@@ -75,15 +76,16 @@ Options parse(int argc, char** argv)
 {
     Options o;
     auto value = [&](int& i) -> std::string {
-        if (i + 1 >= argc) throw UsageError(std::string("geocold-bench: ") + argv[i] + " needs a value");
+        if (i + 1 >= argc) throw UsageError(std::string(argv[i]) + " needs a value");
         return argv[++i];
     };
-    auto integer = [&](int& i) {
+    auto integer = [&](int& i, long lo = 0, long hi = 1 << 20) {
         const std::string v = value(i);
         char* end = nullptr;
         const long n = std::strtol(v.c_str(), &end, 10);
-        if (!end || *end || n < 0 || n > 1 << 20)
-            throw UsageError(std::string("geocold-bench: ") + argv[i - 1] + " wants a non-negative integer, got '" + v + "'");
+        if (!end || *end || n < lo || n > hi)
+            throw UsageError(std::string(argv[i - 1]) + " wants an integer from " +
+                             std::to_string(lo) + " to " + std::to_string(hi) + ", got '" + v + "'");
         return static_cast<int>(n);
     };
     for (int i = 1; i < argc; ++i) {
@@ -98,15 +100,19 @@ Options parse(int argc, char** argv)
         else if (a == "--no-rays") o.rays = false;
         else if (a == "--no-first-image") o.first_image = false;
         else if (a == "--no-packet-probe") o.packet_probe = false;
+        else if (a == "--threads") o.threads = integer(i, 1, 4096);
         else if (a == "--first-image-child") o.first_image_child = value(i);
         else if (a == "--list-device-keys") o.list_device_keys = true;
         else if (a == "--help" || a == "-h") {
             std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
                         "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
-                        "                     [--no-rays] [--no-first-image] [--no-packet-probe]\n");
+                        "                     [--no-rays] [--no-first-image] [--no-packet-probe] [--threads N]\n"
+                        "--threads N caps every CPU thread of the run: PoCL's workers, Embree's and the host's\n"
+                        "(default: every core). With --threads 1 the per-core figure is one thread's, the\n"
+                        "conditions of the Mitsuba llvm_ad_rgb anchor.\n");
             std::exit(0);
         } else {
-            throw UsageError("geocold-bench: unknown option '" + a + "' (see --help)");
+            throw UsageError("unknown option '" + a + "' (see --help)");
         }
     }
     if (o.quick) {
@@ -208,7 +214,7 @@ InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embre
 void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
                 const EmbreeTracer* embree, json& out)
 {
-    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = host_thread_count();
     const auto rays_start = Clock::now();
     const int side = o.ray_side;
     const RaySet set = make_rays(s.scene, bvh, s.camera, side, side, threads);
@@ -309,7 +315,7 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
 {
     json out;
     const std::size_t tris = s.scene.triangle_count();
-    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = host_thread_count();
     say("\n== scene %s: %zu triangles ==\n", s.name.c_str(), tris);
     out["triangles"] = tris;
 
@@ -519,6 +525,12 @@ void bench_packet_probe(const Options& o, std::vector<DeviceSlot>& devices, json
 int run(int argc, char** argv)
 {
     const Options o = parse(argc, argv);
+    if (o.threads > 0) {
+        // Before any OpenCL call (PoCL reads its thread count when it is loaded; the
+        // first-image children inherit the variables) and before Embree's device exists.
+        set_host_thread_count(o.threads);
+        cl::limit_cpu_device_threads(o.threads);
+    }
     if (!o.first_image_child.empty()) return first_image_child(o.first_image_child, o.quick);
     if (o.list_device_keys) return list_device_keys(o);
     if (o.json_out) g_text = stderr;
@@ -528,14 +540,14 @@ int run(int argc, char** argv)
 
     std::string why;
     const std::vector<cl::DeviceInfo> all = cl::list_devices(&why);
-    if (all.empty()) throw DeviceError("geocold-bench: no OpenCL device found: " + why);
+    if (all.empty()) throw DeviceError("no OpenCL device found: " + why);
     std::vector<DeviceSlot> devices = selected_devices(o, all);
     for (DeviceSlot& d : devices) d.context = std::make_unique<cl::Context>(d.info);
     doc["embree"] = embree_available() ? embree_version() : "not built in";
-    doc["threads"] = std::thread::hardware_concurrency();
-    say("geocold-bench: %zu device(s), Embree %s, %u host threads%s\n", devices.size(),
+    doc["threads"] = host_thread_count();
+    say("geocold-bench: %zu device(s), Embree %s, %d host threads%s\n", devices.size(),
         embree_available() ? embree_version().c_str() : "not built in (no yardstick ratios)",
-        std::thread::hardware_concurrency(), o.quick ? ", quick" : "");
+        host_thread_count(), o.quick ? ", quick" : "");
     for (DeviceSlot& d : devices) {
         if (d.info.is_gpu) d.bandwidth = copy_bandwidth(*d.context, std::size_t{1} << 30, o.quick ? 1 : 5);
         say("  %s: %s (%s), %u compute units, work-group %zu%s\n", d.label().c_str(), d.info.device_name.c_str(), d.info.platform_name.c_str(), d.info.compute_units,
@@ -581,6 +593,9 @@ int main(int argc, char** argv)
 {
     try {
         return gc::bench::run(argc, argv);
+    } catch (const gc::UsageError& e) {
+        std::fprintf(stderr, "geocold-bench: %s\n", e.what());
+        return 2;  // a bad command line, as geocold-cl's exit status 2
     } catch (const std::exception& e) {
         std::fprintf(stderr, "geocold-bench: %s\n", e.what());
         return 1;
