@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Copies the header-only dependencies (and GoogleTest's sources) from this Debian machine
 # into .deps/ of the repository, for a machine that has a compiler, CMake and an OpenCL
-# driver but no package manager (e.g. a lent GPU node). .deps/ is git-ignored; carry it.
+# driver but no package manager (e.g. a lent GPU node), and Embree 3 for geocold-bench's
+# yardstick. .deps/ is git-ignored; carry it.
 # The shared Cornell boxes (../shared/scenes/cornell-box: the shared scenes that have lights)
 # go to .deps/scenes/cornell-box when present, so tools/device/consistency.sh can check them
 # on a node that has only the repository.
@@ -20,5 +21,19 @@ if [ -d "$shared_boxes" ]; then
   mkdir -p "$deps/scenes/cornell-box"
   cp "$shared_boxes"/*.obj "$shared_boxes"/*.mtl "$deps/scenes/cornell-box/"
   cp "$shared_boxes"/README.md "$shared_boxes"/copyright.txt "$deps/scenes/cornell-box/" 2>/dev/null || true
+fi
+# Embree 3 and TBB, only as geocold-bench's CPU yardstick on the node (its CMake finds them
+# through embree_DIR / TBB_DIR; tools/device/build-and-test.sh unpacks and points at them).
+# The same prefix layout as Debian's, so both packages' relocatable CMake files work; the
+# 44 MB library travels xz-compressed. Skipped when libembree-dev is not installed.
+multiarch=lib/x86_64-linux-gnu
+if [ -f "/usr/$multiarch/cmake/embree-3.13.5/embree-config.cmake" ] && [ -d "/usr/$multiarch/cmake/TBB" ]; then
+  emb="$deps/embree"
+  mkdir -p "$emb/include" "$emb/$multiarch/cmake"
+  cp -r /usr/include/embree3 "$emb/include/"
+  cp -r "/usr/$multiarch/cmake/embree-3.13.5" "/usr/$multiarch/cmake/TBB" "$emb/$multiarch/cmake/"
+  xz -T0 -6 -c "/usr/$multiarch/libembree3.so.3.13.5" > "$emb/$multiarch/libembree3.so.3.13.5.xz"
+  cp /usr/$multiarch/libtbb.so.12.* /usr/$multiarch/libtbbmalloc.so.2.* /usr/$multiarch/libtbbmalloc_proxy.so.2.* \
+     /usr/$multiarch/libtbbbind_2_5.so.3.* "$emb/$multiarch/"
 fi
 du -sh "$deps"
