@@ -11,6 +11,7 @@
 #include "bvh_checks.h"
 #include "host/scene/load.h"
 #include "host/util/error.h"
+#include "host/util/host_threads.h"
 #include "test_scenes.h"
 
 namespace gc::test {
@@ -41,6 +42,37 @@ TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
     EXPECT_TRUE(same_bytes(one, four)) << "1 vs 4 threads";
     EXPECT_TRUE(same_bytes(one, all)) << "1 thread vs hardware_concurrency";
     check_invariants(four, scene, 4);
+}
+
+// Nodes of 2^20 triangles and more are partitioned stably in parallel chunks (one chunk on
+// one thread, three on three): the same tree either way.
+TEST(BvhBuilder, ThreadCountDoesNotChangeALargeBvh)
+{
+    const Scene scene = random_soup((std::size_t{1} << 20) + 50000, 29, 0.005f);
+    const FlatBvh one = build_bvh(scene, {.threads = 1});
+    const FlatBvh three = build_bvh(scene, {.threads = 3});
+    std::printf("[ determinism ] %zu triangles, %zu nodes; 1 thread %.3f s, 3 threads %.3f s\n",
+                scene.triangle_count(), one.nodes.size(), one.build_seconds, three.build_seconds);
+    ASSERT_TRUE(same_bytes(one, three));
+    check_invariants(three, scene, 4);
+}
+
+// flatten() lays out a large tree's nodes on a pool (subtrees below a cut depth sized, then
+// walked, on all threads): it must write the bytes of the one-thread walk, triangles too.
+TEST(BvhFlatten, ThreadCountDoesNotChangeTheLayout)
+{
+    const Scene scene = random_soup(120000, 28, 0.02f);
+    const BvhTree tree = build_bvh_tree(scene);
+    set_host_thread_count(1);
+    const FlatBvh serial = flatten(tree, scene);
+    set_host_thread_count(4);
+    const FlatBvh pooled = flatten(tree, scene);
+    set_host_thread_count(0);
+    std::printf("[ flatten ] %zu triangles, %zu nodes (the pool takes trees of 65536 or more)\n",
+                scene.triangle_count(), serial.nodes.size());
+    ASSERT_GE(serial.nodes.size(), std::size_t{65536});
+    ASSERT_TRUE(same_bytes(serial, pooled)); // a broken layout is no tree to walk below
+    check_invariants(pooled, scene, 4);
 }
 
 TEST(BvhBuilder, RejectsBadOptions)

@@ -50,8 +50,11 @@ void parallel_for(std::size_t count, int threads, std::size_t chunk,
             fn(begin, std::min(count, begin + chunk));
         }
     };
+    // No more threads than chunks: a thread's start costs more than a small chunk's work.
+    const std::size_t chunks = (count + chunk - 1) / std::max<std::size_t>(chunk, 1);
+    const auto spawned = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), chunks));
     std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+    for (int i = 1; i < spawned; ++i) pool.emplace_back(work);
     work();
     for (std::thread& t : pool) t.join();
 }
