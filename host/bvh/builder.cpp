@@ -206,6 +206,19 @@ struct Split {
     Box4 right_box;
 };
 
+// Whether split `s` sends reference `r` to the left child; `centre` gets r's centroid, which
+// the children's centroid bounds are made of.
+inline bool goes_left(const Split& s, const PrimRef& r, Vec4& centre)
+{
+    Vec4 lo;
+    Vec4 hi;
+    load(r, lo, hi);
+    centre = centroid(lo, hi);
+    alignas(16) std::int32_t b[4];
+    s.map.index(centre, b);
+    return b[s.axis] < s.bin;
+}
+
 // A node to build: its slot in the node array, its triangles refs[begin, end), its depth and
 // bounds (of the triangles and of their centroids), known from the parent's partition.
 struct NodeJob {
@@ -464,19 +477,14 @@ private:
         Box4 cbox[2]; // [0]: right, [1]: left
         std::uint32_t i = begin;
         for (std::uint32_t k = begin; k < end; ++k) {
-            Vec4 lo;
-            Vec4 hi;
-            load(refs[k], lo, hi);
-            const Vec4 c = centroid(lo, hi);
-            alignas(16) std::int32_t b[4];
-            s.map.index(c, b);
-            const int goes_left = b[s.axis] < s.bin ? 1 : 0;
-            cbox[goes_left].grow_point(c);
+            Vec4 c;
+            const int left_side = goes_left(s, refs[k], c) ? 1 : 0;
+            cbox[left_side].grow_point(c);
             // refs[i, k) go right: swapping refs[k] to i keeps that true either way.
             const PrimRef r = refs[k];
             refs[k] = refs[i];
             refs[i] = r;
-            i += static_cast<std::uint32_t>(goes_left);
+            i += static_cast<std::uint32_t>(left_side);
         }
         left.box = s.left_box;
         left.cbox = cbox[1];
@@ -516,15 +524,10 @@ private:
             std::uint32_t l = chunk_begin(c);
             std::uint32_t r = chunk_begin(c + 1);
             for (std::uint32_t k = chunk_begin(c); k < chunk_begin(c + 1); ++k) {
-                Vec4 lo;
-                Vec4 hi;
-                load(refs[k], lo, hi);
-                const Vec4 centre = centroid(lo, hi);
-                alignas(16) std::int32_t b[4];
-                s.map.index(centre, b);
-                const bool goes_left = b[s.axis] < s.bin;
-                run.cbox[goes_left ? 1 : 0].grow_point(centre);
-                scratch[goes_left ? l++ : --r] = refs[k];
+                Vec4 centre;
+                const bool left_side = goes_left(s, refs[k], centre);
+                run.cbox[left_side ? 1 : 0].grow_point(centre);
+                scratch[left_side ? l++ : --r] = refs[k];
             }
             run.lefts = l - chunk_begin(c);
         });

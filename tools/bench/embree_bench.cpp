@@ -29,6 +29,26 @@ RTCDevice new_device()
     return device;
 }
 
+RTCBounds empty_bounds()
+{
+    RTCBounds b{};
+    b.lower_x = b.lower_y = b.lower_z = std::numeric_limits<float>::infinity();
+    b.upper_x = b.upper_y = b.upper_z = -std::numeric_limits<float>::infinity();
+    return b;
+}
+
+// Grows `into` by a box with Embree's field names (RTCBounds or RTCBuildPrimitive).
+template <class Box>
+void grow(RTCBounds& into, const Box& b)
+{
+    into.lower_x = std::min(into.lower_x, b.lower_x);
+    into.lower_y = std::min(into.lower_y, b.lower_y);
+    into.lower_z = std::min(into.lower_z, b.lower_z);
+    into.upper_x = std::max(into.upper_x, b.upper_x);
+    into.upper_y = std::max(into.upper_y, b.upper_y);
+    into.upper_z = std::max(into.upper_z, b.upper_z);
+}
+
 // rtcBuildBVH callbacks: nodes live in Embree's thread-local allocator, freed with the RTCBVH.
 struct Node {
     bool leaf;
@@ -111,9 +131,7 @@ EmbreeBuildFigures embree_build_bvh2(const Scene& scene, const BvhBuildOptions& 
     if (n == 0) return figures;
     RTCDevice device = new_device();
     std::vector<RTCBuildPrimitive> prims(n);
-    RTCBounds root{};
-    root.lower_x = root.lower_y = root.lower_z = std::numeric_limits<float>::infinity();
-    root.upper_x = root.upper_y = root.upper_z = -std::numeric_limits<float>::infinity();
+    RTCBounds root = empty_bounds();
 
     const auto start = Clock::now();
     // The primitive array is part of the build, as our builder's triangle-bounds pass is part
@@ -122,9 +140,7 @@ EmbreeBuildFigures embree_build_bvh2(const Scene& scene, const BvhBuildOptions& 
     constexpr std::size_t kChunk = 16384;
     std::vector<RTCBounds> chunk_bounds((n + kChunk - 1) / kChunk);
     parallel_for(n, host_thread_count(), kChunk, [&](std::size_t begin, std::size_t end) {
-        RTCBounds b{};
-        b.lower_x = b.lower_y = b.lower_z = std::numeric_limits<float>::infinity();
-        b.upper_x = b.upper_y = b.upper_z = -std::numeric_limits<float>::infinity();
+        RTCBounds b = empty_bounds();
         for (std::size_t t = begin; t < end; ++t) {
             RTCBuildPrimitive& p = prims[t];
             const Point3 a = scene.vertex(t, 0);
@@ -138,23 +154,11 @@ EmbreeBuildFigures embree_build_bvh2(const Scene& scene, const BvhBuildOptions& 
             p.upper_z = std::max({a.z, v1.z, v2.z});
             p.geomID = 0;
             p.primID = static_cast<unsigned>(t);
-            b.lower_x = std::min(b.lower_x, p.lower_x);
-            b.lower_y = std::min(b.lower_y, p.lower_y);
-            b.lower_z = std::min(b.lower_z, p.lower_z);
-            b.upper_x = std::max(b.upper_x, p.upper_x);
-            b.upper_y = std::max(b.upper_y, p.upper_y);
-            b.upper_z = std::max(b.upper_z, p.upper_z);
+            grow(b, p);
         }
         chunk_bounds[begin / kChunk] = b;
     });
-    for (const RTCBounds& b : chunk_bounds) {
-        root.lower_x = std::min(root.lower_x, b.lower_x);
-        root.lower_y = std::min(root.lower_y, b.lower_y);
-        root.lower_z = std::min(root.lower_z, b.lower_z);
-        root.upper_x = std::max(root.upper_x, b.upper_x);
-        root.upper_y = std::max(root.upper_y, b.upper_y);
-        root.upper_z = std::max(root.upper_z, b.upper_z);
-    }
+    for (const RTCBounds& b : chunk_bounds) grow(root, b);
     RTCBVH bvh = rtcNewBVH(device);
     RTCBuildArguments args = rtcDefaultBuildArguments();
     args.byteSize = sizeof(args);
