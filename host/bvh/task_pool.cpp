@@ -22,7 +22,7 @@ TaskPool::~TaskPool()
         std::lock_guard<std::mutex> lock(m_mutex);
         m_stop = true;
     }
-    m_changed.notify_all();
+    m_work.notify_all();
     for (std::thread& t : m_workers) t.join();
     t_pool = m_outer_pool;
     t_index = m_outer_index;
@@ -32,12 +32,15 @@ int TaskPool::worker_index() const { return t_pool == this ? t_index : -1; }
 
 void TaskPool::spawn(TaskGroup& group, std::function<void()> task)
 {
+    bool waiters = false;
     {
         std::lock_guard<std::mutex> lock(m_mutex);
         ++group.pending;
         m_queue.push_back(Task{&group, std::move(task)});
+        waiters = m_waiting > 0;
     }
-    m_changed.notify_one();
+    m_work.notify_one();
+    if (waiters) m_progress.notify_one();
 }
 
 // Runs with the lock released; takes it again to account for the task.
@@ -53,7 +56,8 @@ void TaskPool::run_task(Task& task, std::unique_lock<std::mutex>& lock)
     task.run = nullptr; // release captures outside the lock
     lock.lock();
     if (error && !task.group->error) task.group->error = error;
-    if (--task.group->pending == 0) m_changed.notify_all();
+    // Only threads in wait() care that a group finished; idle workers sleep on.
+    if (--task.group->pending == 0 && m_waiting > 0) m_progress.notify_all();
 }
 
 void TaskPool::wait(TaskGroup& group)
@@ -67,7 +71,9 @@ void TaskPool::wait(TaskGroup& group)
             m_queue.pop_back();
             run_task(task, lock);
         } else {
-            m_changed.wait(lock);
+            ++m_waiting;
+            m_progress.wait(lock);
+            --m_waiting;
         }
     }
     if (group.error) {
@@ -91,7 +97,7 @@ void TaskPool::worker_main(int index)
         } else if (m_stop) {
             return;
         } else {
-            m_changed.wait(lock);
+            m_work.wait(lock);
         }
     }
 }

@@ -1,0 +1,75 @@
+// TaskPool (host/bvh/task_pool.h), the fork-join pool of the BVH builder, flatten and the
+// wide collapse: every task runs exactly once, nested fork-join finishes (a waiting thread
+// runs queued tasks instead of blocking), failures reach the caller, and worker indices stay
+// within the pool.
+#include <atomic>
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "host/bvh/task_pool.h"
+
+namespace gc::test {
+namespace {
+
+TEST(TaskPool, ForEachRunsEveryIndexOnceOnValidWorkers)
+{
+    TaskPool pool(8);
+    std::vector<std::atomic<int>> runs(5000);
+    std::atomic<int> bad_index{0};
+    pool.for_each(runs.size(), [&](std::size_t i) {
+        ++runs[i];
+        const int w = pool.worker_index();
+        if (w < 0 || w >= pool.threads()) ++bad_index;
+    });
+    int wrong = 0;
+    for (const std::atomic<int>& r : runs) wrong += r.load() == 1 ? 0 : 1;
+    std::printf("[ pool ] %zu tasks on %d threads: %d ran other than once, %d on a bad worker index\n",
+                runs.size(), pool.threads(), wrong, bad_index.load());
+    EXPECT_EQ(wrong, 0);
+    EXPECT_EQ(bad_index.load(), 0);
+}
+
+// Binary fork-join to depth 14 (16383 tasks), the builder's pattern: spawn the right half,
+// do the left, wait. Counts the leaves.
+long count_leaves(TaskPool& pool, int depth)
+{
+    if (depth == 0) return 1;
+    long right = 0;
+    TaskGroup group;
+    pool.spawn(group, [&pool, &right, depth] { right = count_leaves(pool, depth - 1); });
+    const long left = count_leaves(pool, depth - 1);
+    pool.wait(group);
+    return left + right;
+}
+
+TEST(TaskPool, NestedForkJoinCompletes)
+{
+    for (int threads : {1, 2, 16}) {
+        TaskPool pool(threads);
+        const long leaves = count_leaves(pool, 14);
+        std::printf("[ pool ] %d threads: %ld leaves (expected %d)\n", threads, leaves, 1 << 14);
+        EXPECT_EQ(leaves, 1L << 14);
+    }
+}
+
+TEST(TaskPool, FailuresReachTheCaller)
+{
+    TaskPool pool(4);
+    EXPECT_THROW(pool.for_each(64, [](std::size_t i) {
+        if (i == 37) throw std::runtime_error("task 37");
+    }),
+                 std::runtime_error);
+    TaskGroup group;
+    pool.spawn(group, [] { throw std::logic_error("spawned"); });
+    EXPECT_THROW(pool.wait(group), std::logic_error);
+    // The pool still works afterwards.
+    std::atomic<int> ran{0};
+    pool.for_each(100, [&](std::size_t) { ++ran; });
+    EXPECT_EQ(ran.load(), 100);
+}
+
+}  // namespace
+}  // namespace gc::test
