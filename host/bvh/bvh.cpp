@@ -23,9 +23,13 @@ double surface_area(const dev::GcBvhNode& node)
 
 FlatBvh build_bvh(const Scene& scene, const BvhBuildOptions& options)
 {
-    const auto start = std::chrono::steady_clock::now();
-    FlatBvh flat = flatten(build_bvh_tree(scene, options), scene);
-    flat.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const BvhTree tree = build_bvh_tree(scene, options);
+    const auto tree_done = Clock::now();
+    FlatBvh flat = flatten(tree, scene);
+    flat.tree_seconds = std::chrono::duration<double>(tree_done - start).count();
+    flat.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return flat;
 }
 

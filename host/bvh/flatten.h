@@ -24,6 +24,7 @@ struct FlatBvh {
     BigArray<dev::GcBvhNode> nodes;
     BigArray<dev::GcTriangle> triangles;
     double build_seconds = 0.0; // wall time of build_bvh (tree + flatten); 0 if not timed
+    double tree_seconds = 0.0;  // of which the tree (build_bvh_tree); the rest is flatten
 
     // Triangles of the scene (0 for the empty scene's dummy).
     std::size_t scene_triangle_count() const;
