@@ -1,0 +1,227 @@
+"""Mitsuba 3 as a yardstick in the same run: geocold-bench's path-traced samples per second
+against Mitsuba 3's on the same view, the same machine and the same threads, in interleaved
+rounds (ours, then Mitsuba's), reported as the median of the per-round ratios.
+
+Why: issue 6 states its Mitsuba anchors as fixed figures measured elsewhere (0.96 M samples/s
+per thread for llvm_ad_rgb on the Cornell box, 221 M for cuda_ad_rgb on an H200). A shared
+machine's speed moves by 2x from one hour to the next, so a ratio to a fixed figure says more
+about the machine's load than about the renderer. Embree already runs in the same process as
+our rays; this does the same for the path figures.
+
+    python3 -m venv .venv && .venv/bin/pip install -r tools/reference/requirements.txt
+    apt-get install libllvm19          # Dr.Jit's LLVM back end needs LLVM >= 17
+    .venv/bin/python tools/bench/mitsuba_yardstick.py --bench build/release/geocold-bench \\
+        --threads 1 --scene cornell,dragon --rounds 5
+    .venv/bin/python tools/bench/mitsuba_yardstick.py --bench ... --device gpu   # cuda_ad_rgb
+
+The view (scene file, camera, resolution, environment, max depth 8 and no Russian roulette)
+comes from geocold-bench's own --json output, and the Mitsuba scene from the reference tools'
+OBJ conversion (tools/reference), so both renderers see the same scene by construction. A
+check that they do: geocold-cl renders the view too, and the two images' mean luminance must
+agree within --same-picture percent, or the comparison is refused (exit 1).
+
+Timing: Mitsuba renders with a fixed sample count chosen so that one render takes about
+--seconds (after a render that compiles its kernels, which Dr.Jit then caches), and the time
+covers mi.render up to dr.sync_thread(). Ours is geocold-bench's own figure: the median time
+of its timed samples, kernels compiled beforehand.
+
+Exit status: 0 done, 1 the pictures differ, 2 bad usage or a failed child.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "reference"))
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--bench", required=True, help="the geocold-bench executable")
+    p.add_argument("--geocold", help="the geocold-cl executable (default: beside --bench)")
+    p.add_argument("--scene", default="cornell,dragon", help="geocold-bench scene names (with a file)")
+    p.add_argument("--device", choices=["cpu", "gpu"], default="cpu",
+                   help="cpu: PoCL against llvm_ad_rgb; gpu: the GPU against cuda_ad_rgb")
+    p.add_argument("--threads", type=int, default=0, help="CPU threads for both (0: every core)")
+    p.add_argument("--rounds", type=int, default=5, help="interleaved rounds per scene")
+    p.add_argument("--seconds", type=float, default=1.0, help="target length of one Mitsuba render")
+    p.add_argument("--same-picture", type=float, default=2.0,
+                   help="largest difference of the mean luminance, percent")
+    p.add_argument("--json", help="also write the figures here")
+    args = p.parse_args(argv)
+    if args.rounds < 1 or args.threads < 0 or not args.seconds > 0:
+        p.error("--rounds must be >= 1, --threads >= 0 and --seconds > 0")
+    if not os.access(args.bench, os.X_OK):
+        p.error(f"--bench {args.bench}: not an executable")
+    args.geocold = args.geocold or os.path.join(os.path.dirname(os.path.abspath(args.bench)), "geocold-cl")
+    return args
+
+
+def fail(message: str, status: int = 2):
+    print(f"mitsuba_yardstick: {message}", file=sys.stderr)
+    raise SystemExit(status)
+
+
+def thread_args(threads: int) -> list:
+    return ["--threads", str(threads)] if threads > 0 else []
+
+
+def ours(args, scene: str):
+    """geocold-bench's path figure and view for one scene: (samples/s, view, device label)."""
+    command = [args.bench, "--json", "--device", args.device, "--scene", scene, "--no-rays", "--no-first-image",
+               "--no-packet-probe", *thread_args(args.threads)]
+    run = subprocess.run(command, capture_output=True, text=True)
+    if run.returncode != 0:
+        fail(f"{' '.join(command)} exited {run.returncode}:\n{run.stderr}")
+    doc = json.loads(run.stdout)
+    entry = doc["scenes"].get(scene)
+    if not entry or not entry.get("path"):
+        fail(f"geocold-bench measured no path figure for scene '{scene}' on {args.device}")
+    label, figures = next(iter(entry["path"].items()))
+    return figures["samples_per_s"], entry["view"], label
+
+
+def mitsuba_setup(view):
+    """The Mitsuba scene and integrator for a geocold-bench view."""
+    import mitsuba as mi
+    from make_reference import load_groups
+    from mitsuba_scene import build_scene
+
+    if not view["source"]:
+        fail("a generated scene has no file for Mitsuba to load; pick scenes with a file")
+    camera = {"look_from": view["look_from"], "look_at": view["look_at"], "up": view["up"], "fov": view["fov"],
+              "res": [view["width"], view["height"]]}
+    with tempfile.TemporaryDirectory() as tmp:
+        scene = build_scene(load_groups(view["source"], tmp), camera, view["max_depth"], view["env"])
+    # rr_depth past max_depth: no Russian roulette, as in geocold-bench.
+    integrator = mi.load_dict({"type": "path", "max_depth": int(view["max_depth"]),
+                               "rr_depth": max(int(view["rr_depth"]), int(view["max_depth"]) + 1)})
+    return scene, integrator
+
+
+def mitsuba_render(scene, integrator, spp: int, seed: int):
+    """(seconds, image) of one render, to the end of the device's work."""
+    import drjit as dr
+    import mitsuba as mi
+
+    start = time.perf_counter()
+    image = mi.render(scene, integrator=integrator, spp=spp, seed=seed)
+    dr.eval(image)
+    dr.sync_thread()
+    return time.perf_counter() - start, image
+
+
+def luminance_mean(rgb) -> float:
+    import numpy as np
+
+    rgb = np.asarray(rgb, dtype=np.float64)[..., :3]
+    return float(np.mean(0.2126 * rgb[..., 0] + 0.7152 * rgb[..., 1] + 0.0722 * rgb[..., 2]))
+
+
+def read_pfm(path: str):
+    import numpy as np
+
+    with open(path, "rb") as f:
+        if f.readline().strip() != b"PF":
+            fail(f"{path}: not a colour PFM")
+        width, height = (int(x) for x in f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    if data.size != width * height * 3:
+        fail(f"{path}: {data.size} floats for {width}x{height}x3")
+    return data.reshape(height, width, 3)
+
+
+def geocold_picture(args, view, spp: int):
+    """geocold-cl's rendering of the view (for the same-picture check)."""
+    triple = lambda v: ",".join(repr(float(x)) for x in v)
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "ours.pfm")
+        command = [args.geocold, view["source"], "--quiet", "--device", args.device, "--spp", str(spp),
+                   "--res", f"{view['width']}x{view['height']}", "--max-depth", str(view["max_depth"]),
+                   "--rr-depth", str(view["rr_depth"]), f"--look-from={triple(view['look_from'])}",
+                   f"--look-at={triple(view['look_at'])}", f"--up={triple(view['up'])}", "--fov",
+                   repr(float(view["fov"])), "--env", triple(view["env"]), *thread_args(args.threads), "-o", out]
+        run = subprocess.run(command, capture_output=True, text=True)
+        if run.returncode != 0:
+            fail(f"{' '.join(command)} exited {run.returncode}:\n{run.stderr}")
+        return read_pfm(out)
+
+
+def measure_scene(args, scene_name: str) -> dict:
+    ours_sps, view, label = ours(args, scene_name)
+    scene, integrator = mitsuba_setup(view)
+    pixels = view["width"] * view["height"]
+    # One sample per pixel compiles the kernels and gives the rate; the render of the chosen
+    # sample count then compiles its own size once more before the timed rounds.
+    seconds, _ = mitsuba_render(scene, integrator, 1, 0)
+    seconds, _ = mitsuba_render(scene, integrator, 1, 1)
+    spp = max(1, round(args.seconds / seconds))
+    _, image = mitsuba_render(scene, integrator, spp, 2)
+
+    ours_mean = luminance_mean(geocold_picture(args, view, max(spp, 16)))
+    theirs_mean = luminance_mean(image)
+    diff = 100.0 * abs(ours_mean - theirs_mean) / max(theirs_mean, 1e-12)
+    print(f"== {scene_name}: {view['width']}x{view['height']}, depth {view['max_depth']}, no Russian roulette; "
+          f"mean luminance ours {ours_mean:.5f}, Mitsuba {theirs_mean:.5f} ({diff:.2f} % apart, bound "
+          f"{args.same_picture} %)")
+    if not diff <= args.same_picture:
+        fail(f"{scene_name}: the two renderers do not draw the same picture; no ratio", 1)
+
+    rounds = []
+    for r in range(args.rounds):
+        if r > 0:
+            ours_sps, _, _ = ours(args, scene_name)
+        seconds, _ = mitsuba_render(scene, integrator, spp, 3 + r)
+        theirs_sps = pixels * spp / seconds
+        rounds.append({"ours": ours_sps, "mitsuba": theirs_sps, "ratio": ours_sps / theirs_sps})
+        print(f"  round {r + 1}: ours {ours_sps / 1e6:.4f} M, Mitsuba {theirs_sps / 1e6:.4f} M "
+              f"({spp} spp in {seconds:.3f} s) = {ours_sps / theirs_sps:.3f}x")
+    ratios = [x["ratio"] for x in rounds]
+    summary = {"device": label, "ours_median": statistics.median(x["ours"] for x in rounds),
+               "mitsuba_median": statistics.median(x["mitsuba"] for x in rounds), "ratio_median": statistics.median(ratios),
+               "ratio_min": min(ratios), "ratio_max": max(ratios), "mitsuba_spp": spp, "rounds": rounds,
+               "mean_luminance": {"ours": ours_mean, "mitsuba": theirs_mean}}
+    print(f"  {scene_name} {label}: ours {summary['ours_median'] / 1e6:.4f} M / Mitsuba "
+          f"{summary['mitsuba_median'] / 1e6:.4f} M samples/s = {summary['ratio_median']:.3f}x (median of "
+          f"{len(ratios)} per-round ratios, {summary['ratio_min']:.3f}-{summary['ratio_max']:.3f})")
+    return summary
+
+
+def main(argv=None) -> int:
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        import drjit as dr
+        import mitsuba as mi
+    except ImportError as e:
+        fail(f"Mitsuba 3 is not importable ({e}); pip install -r tools/reference/requirements.txt")
+    variant = "cuda_ad_rgb" if args.device == "gpu" else "llvm_ad_rgb"
+    try:
+        mi.set_variant(variant)
+    except Exception as e:  # Dr.Jit raises its own types when LLVM or CUDA is missing
+        fail(f"Mitsuba's {variant} does not start here ({e}); llvm needs libLLVM >= 17 "
+             "(DRJIT_LIBLLVM_PATH), cuda an NVIDIA driver")
+    if args.threads > 0:
+        dr.set_thread_count(args.threads)
+    threads = "every core" if args.threads == 0 else f"{args.threads} thread(s)"
+    print(f"Mitsuba {mi.__version__} {variant} against geocold-bench --device {args.device}, {threads}, "
+          f"{args.rounds} interleaved rounds")
+    results = {name: measure_scene(args, name) for name in args.scene.split(",") if name}
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"variant": variant, "mitsuba": mi.__version__, "threads": args.threads, "scenes": results}, f,
+                      indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
