@@ -161,11 +161,19 @@ def measure_scene(args, scene_name: str) -> dict:
     ours_sps, view, label = ours(args, scene_name)
     scene, integrator = mitsuba_setup(view)
     pixels = view["width"] * view["height"]
-    # One sample per pixel compiles the kernels and gives the rate; the render of the chosen
-    # sample count then compiles its own size once more before the timed rounds.
-    seconds, _ = mitsuba_render(scene, integrator, 1, 0)
-    seconds, _ = mitsuba_render(scene, integrator, 1, 1)
-    spp = max(1, round(args.seconds / seconds))
+    # The sample count for one render of about --seconds: grown 8x at a time until a render
+    # takes a quarter of that, so that a fast device is not timed on a launch or two (1 spp of
+    # the dragon takes the H200 well under a millisecond). Each new count is rendered once
+    # untimed first: it may compile kernels of its own.
+    spp = 1
+    mitsuba_render(scene, integrator, spp, 0)
+    while True:
+        seconds, _ = mitsuba_render(scene, integrator, spp, 1)
+        if seconds >= args.seconds / 4 or spp >= 1 << 20:
+            break
+        spp *= 8
+        mitsuba_render(scene, integrator, spp, 0)
+    spp = max(1, round(spp * args.seconds / seconds))
     _, image = mitsuba_render(scene, integrator, spp, 2)
 
     ours_mean = luminance_mean(geocold_picture(args, view, max(spp, 16)))

@@ -31,18 +31,9 @@ fi
 # Embree for geocold-bench's yardstick, when prepare-deps.sh packed it: unpacked once, found
 # through its CMake files, and on the loader's path for the bench (export LD_LIBRARY_PATH as
 # printed below to run geocold-bench by hand).
-embree_args=()
-emb="$root/.deps/embree/lib/x86_64-linux-gnu"
-if [ -f "$emb/libembree3.so.3.13.5.xz" ]; then
-  [ -f "$emb/libembree3.so.3.13.5" ] || xz -dkc "$emb/libembree3.so.3.13.5.xz" > "$emb/libembree3.so.3.13.5"
-  for lib in "$emb"/lib*.so.*[0-9]; do
-    soname=$(basename "$lib" | sed -E 's/^(lib[a-z0-9_]+\.so\.[0-9]+).*/\1/')
-    ln -sf "$(basename "$lib")" "$emb/$soname"
-  done
-  embree_args=(-Dembree_DIR="$emb/cmake/embree-3.13.5" -DTBB_DIR="$emb/cmake/TBB")
-  echo "Embree yardstick: LD_LIBRARY_PATH=$emb"
-  export LD_LIBRARY_PATH="$emb${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-fi
+# shellcheck source=tools/device/embree-env.sh
+source "$root/tools/device/embree-env.sh"
+[ ${#embree_args[@]} -eq 0 ] || echo "Embree yardstick: LD_LIBRARY_PATH=$emb"
 
 cmake --preset bare -B "$build" -DOpenCL_INCLUDE_DIR="$root/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
       -DCMAKE_PREFIX_PATH="$gtest_prefix" -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest" \

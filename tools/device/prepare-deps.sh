@@ -36,4 +36,35 @@ if [ -f "/usr/$multiarch/cmake/embree-3.13.5/embree-config.cmake" ] && [ -d "/us
   cp /usr/$multiarch/libtbb.so.12.* /usr/$multiarch/libtbbmalloc.so.2.* /usr/$multiarch/libtbbmalloc_proxy.so.2.* \
      /usr/$multiarch/libtbbbind_2_5.so.3.* "$emb/$multiarch/"
 fi
+# The bench's bunny and dragon (../shared/scenes), for geocold-bench on the node: point
+# GEOCOLD_SHARED_DIR at .deps/shared there.
+for scene in stanford-bunny stanford-dragon-100k; do
+  src="${GEOCOLD_SHARED_DIR:-$root/../shared}/scenes/$scene"
+  [ -d "$src" ] && mkdir -p "$deps/shared/scenes" && cp -r "$src" "$deps/shared/scenes/"
+done
+# Mitsuba 3 for tools/bench/mitsuba_yardstick.py on the node (GEOCOLD_PACK_MITSUBA=1; needs
+# PyPI here): the wheels for the node's Python (GEOCOLD_NODE_PYTHON, default 3.12), unpacked
+# and cut to the rgb variants and the plugins the yardstick's scenes load (95 MB of 200),
+# xz-compressed (about 17 MB). tools/device/mitsuba-yardstick.sh unpacks it there.
+if [ "${GEOCOLD_PACK_MITSUBA:-0}" = 1 ]; then
+  py=${GEOCOLD_NODE_PYTHON:-3.12}
+  tmp=$(mktemp -d)
+  # The versions of tools/reference/requirements.txt.
+  versions=$(grep -E '^(mitsuba|drjit)==' "$root/tools/reference/requirements.txt")
+  # shellcheck disable=SC2086
+  python3 -m pip download -q --no-deps --only-binary=:all: --python-version "$py" --implementation cp \
+    --platform manylinux_2_28_x86_64 --platform manylinux_2_27_x86_64 --platform manylinux_2_17_x86_64 \
+    -d "$tmp/wheels" $versions
+  mkdir -p "$tmp/site"
+  for w in "$tmp"/wheels/mitsuba-*.whl "$tmp"/wheels/drjit-*.whl; do (cd "$tmp/site" && python3 -m zipfile -e "$w" .); done
+  keep=" path perspective independent hdrfilm box diffuse twosided area constant conductor blendbsdf dielectric srgb bitmap uniform principled normalmap d65 regular merge "
+  for f in "$tmp"/site/mitsuba/plugins/*.so; do
+    case "$keep" in *" $(basename "$f" .so) "*) ;; *) rm "$f" ;; esac
+  done
+  rm -rf "$tmp"/site/mitsuba/*spectral* "$tmp"/site/mitsuba/*mono* "$tmp"/site/mitsuba/data/srgb.coeff \
+         "$tmp"/site/mitsuba/data/sunsky "$tmp"/site/share
+  mkdir -p "$deps/mitsuba"
+  tar -C "$tmp/site" -cf - . | xz -T0 -6 > "$deps/mitsuba/site.tar.xz"
+  rm -rf "$tmp"
+fi
 du -sh "$deps"
