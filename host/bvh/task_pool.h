@@ -1,6 +1,8 @@
-// A small fork-join pool for the BVH builder: workers start once per build instead of one
-// std::thread per parallel subtree, and a thread that waits for its children runs queued
-// tasks meanwhile, so nested fork-join never idles a core or deadlocks.
+// A small fork-join pool for the BVH builder, flatten and the wide collapse: a thread that
+// waits for its children runs queued tasks meanwhile, so nested fork-join never idles a core
+// or deadlocks. Its workers are the process's parked worker threads, lent to the pool for its
+// lifetime and parked again by its destructor (threads are started only when no parked one is
+// free), so a render's three pools and a bench's many builds start no thread after the first.
 //
 //     TaskPool pool(threads);           // threads - 1 workers; the caller is worker 0
 //     TaskGroup group;
@@ -17,7 +19,6 @@
 #include <exception>
 #include <functional>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 namespace gc {
@@ -60,13 +61,17 @@ public:
         if (own) std::rethrow_exception(own);
     }
 
+    struct Worker; // a parked thread of the process (task_pool.cpp)
+
 private:
     struct Task {
         TaskGroup* group;
         std::function<void()> run;
     };
+    static void worker_loop(Worker* worker);
     void worker_main(int index);
     void run_task(Task& task, std::unique_lock<std::mutex>& lock);
+    void release_workers() noexcept;
 
     std::mutex m_mutex;
     // Two wake-up calls, so that a finished task does not wake every idle worker: with one
@@ -79,7 +84,7 @@ private:
     int m_waiting = 0;                  // threads blocked in wait(), guarded by m_mutex
     std::deque<Task> m_queue;
     bool m_stop = false;
-    std::vector<std::thread> m_workers;
+    std::vector<Worker*> m_workers; // lent for the pool's lifetime
     // The creating thread's previous pool, if any, restored on destruction. A pool must be
     // destroyed on the thread that made it.
     const TaskPool* m_outer_pool;

@@ -1,10 +1,13 @@
 // TaskPool (host/bvh/task_pool.h), the fork-join pool of the BVH builder, flatten and the
 // wide collapse: every task runs exactly once, nested fork-join finishes (a waiting thread
-// runs queued tasks instead of blocking), failures reach the caller, and worker indices stay
-// within the pool.
+// runs queued tasks instead of blocking), failures reach the caller, worker indices stay
+// within the pool, and a later pool borrows the parked threads of an earlier one.
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -53,6 +56,52 @@ TEST(TaskPool, NestedForkJoinCompletes)
         std::printf("[ pool ] %d threads: %ld leaves (expected %d)\n", threads, leaves, 1 << 14);
         EXPECT_EQ(leaves, 1L << 14);
     }
+}
+
+// Which threads serve one pool's workers: a serial number per thread (a thread_local, so a
+// thread started anew gets a new one even where the OS reuses thread ids). Every one of the
+// pool's threads() tasks waits until all have started, so each thread takes exactly one.
+int thread_serial()
+{
+    static std::atomic<int> next_serial{0};
+    thread_local const int serial = ++next_serial; // initialised on each thread's first call
+    return serial;
+}
+
+std::vector<int> worker_serials(TaskPool& pool)
+{
+    std::atomic<int> started{0};
+    std::vector<int> serials(static_cast<std::size_t>(pool.threads()), 0);
+    pool.for_each(serials.size(), [&](std::size_t) {
+        ++started;
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (started.load() < pool.threads() && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+        serials[static_cast<std::size_t>(pool.worker_index())] = thread_serial();
+    });
+    EXPECT_EQ(started.load(), pool.threads());
+    return {serials.begin() + 1, serials.end()}; // the workers, without the caller
+}
+
+TEST(TaskPool, LaterPoolsReuseTheWorkersOfEarlierOnes)
+{
+    std::vector<int> first;
+    {
+        TaskPool pool(6);
+        first = worker_serials(pool);
+    }
+    std::vector<int> second;
+    {
+        TaskPool pool(4);
+        second = worker_serials(pool);
+    }
+    std::sort(first.begin(), first.end());
+    int fresh = 0;
+    for (int s : second) fresh += std::binary_search(first.begin(), first.end(), s) ? 0 : 1;
+    std::printf("[ pool ] a pool of 6 then one of 4: %d of the second's %zu workers are new threads\n", fresh,
+                second.size());
+    EXPECT_EQ(first.size(), 5u);
+    EXPECT_EQ(second.size(), 3u);
+    EXPECT_EQ(fresh, 0);
 }
 
 TEST(TaskPool, FailuresReachTheCaller)
