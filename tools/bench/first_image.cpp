@@ -45,7 +45,9 @@ int first_image_child(const std::string& key, bool tiny)
     }
     const FlatBvh bvh = build_bvh(s->scene);
     std::string why_none;
+    const auto devices_start = Clock::now();
     const std::vector<cl::DeviceInfo> devices = cl::list_devices(&why_none);
+    const double devices_seconds = seconds_since(devices_start);
     const cl::DeviceInfo* device = nullptr;
     for (const cl::DeviceInfo& d : devices)
         if (device_key(d, devices) == key) device = &d;
@@ -54,7 +56,9 @@ int first_image_child(const std::string& key, bool tiny)
                      cl::format_device_list(devices).c_str(), why_none.empty() ? "" : "  why: ", why_none.c_str());
         return 2;
     }
+    const auto context_start = Clock::now();
     const cl::Context context(*device);
+    const double context_seconds = seconds_since(context_start);
     RenderSettings settings;
     settings.width = s->pt_width;
     settings.height = s->pt_height;
@@ -65,8 +69,8 @@ int first_image_child(const std::string& key, bool tiny)
     renderer.render_sample();
     const Film film = renderer.film();
     const double render = seconds_since(render_start);
-    std::printf("first-image %.6f %.6f %.6f %d\n", seconds_since(start), renderer.program().build_seconds(), render,
-                renderer.program().from_cache() ? 1 : 0);
+    std::printf("first-image %.6f %.6f %.6f %d %.6f %.6f\n", seconds_since(start), renderer.program().build_seconds(),
+                render, renderer.program().from_cache() ? 1 : 0, devices_seconds, context_seconds);
     return 0;
 }
 
@@ -96,7 +100,8 @@ FirstImage run_first_image(const std::string& key, const std::string& cache_root
     std::string word;
     int cached = 0;
     while (in >> word) {
-        if (word == "first-image" && in >> result.total_seconds >> result.compile_seconds >> result.render_seconds >> cached) {
+        if (word == "first-image" && in >> result.total_seconds >> result.compile_seconds >> result.render_seconds >> cached >>
+                                             result.devices_seconds >> result.context_seconds) {
             result.ok = status == 0;
             result.from_cache = cached != 0;
         }

@@ -19,6 +19,8 @@ struct FirstImage {
     double total_seconds = 0.0;   // inside the child: start of main to film in host memory
     double compile_seconds = 0.0; // Program build (or cache load)
     double render_seconds = 0.0;  // first sample + film read-back
+    double devices_seconds = 0.0; // listing the OpenCL devices (loads every platform's driver)
+    double context_seconds = 0.0; // the context and queue on the chosen device
     bool from_cache = false;
 };
 
@@ -34,8 +36,8 @@ std::string device_key(const cl::DeviceInfo& device, const std::vector<cl::Devic
 // must hold no context on the device: the child measures a device it has to itself.
 FirstImage run_first_image(const std::string& key, const std::string& cache_root, bool tiny);
 
-// The child's side: renders, prints one line "first-image <total> <compile> <render> <cached>"
-// on stdout. Returns the process exit code; when no device matches the key, says so on
+// The child's side: renders, prints one line
+// "first-image <total> <compile> <render> <cached> <devices> <context>" on stdout. Returns the process exit code; when no device matches the key, says so on
 // stderr with the devices this process sees.
 int first_image_child(const std::string& key, bool tiny);
 

@@ -527,12 +527,15 @@ void bench_first_images(const Options& o, json& doc)
                 say("  %s %s: failed: %s\n", name.c_str(), label, fi.error.c_str());
                 continue;
             }
-            say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back %.3f s\n",
+            say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back "
+                "%.3f s; devices listed %.3f s, context %.3f s\n",
                 name.c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
-                fi.compile_seconds, fi.render_seconds);
+                fi.compile_seconds, fi.render_seconds, fi.devices_seconds, fi.context_seconds);
             doc["first_image"][name][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
                                                {"compile_seconds", fi.compile_seconds},
-                                               {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache}};
+                                               {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache},
+                                               {"devices_seconds", fi.devices_seconds},
+                                               {"context_seconds", fi.context_seconds}};
         }
     }
 }
