@@ -121,24 +121,31 @@ def mitsuba_render(scene, integrator, spp: int, seed: int):
 
 
 def luminance_mean(rgb) -> float:
-    import numpy as np
-
-    rgb = np.asarray(rgb, dtype=np.float64)[..., :3]
-    return float(np.mean(0.2126 * rgb[..., 0] + 0.7152 * rgb[..., 1] + 0.0722 * rgb[..., 2]))
+    """Mean Rec. 709 luminance of a flat R, G, B, R, G, B... sequence (a list, an array or a
+    NumPy vector)."""
+    pixels = len(rgb) // 3
+    if pixels == 0:
+        fail("an empty image")
+    return (0.2126 * sum(rgb[0::3]) + 0.7152 * sum(rgb[1::3]) + 0.0722 * sum(rgb[2::3])) / pixels
 
 
 def read_pfm(path: str):
-    import numpy as np
+    """(width, height, rgb) of a colour PFM, rgb flat as in luminance_mean (standard library
+    only, so that the checks run where NumPy is not installed)."""
+    import array
 
     with open(path, "rb") as f:
         if f.readline().strip() != b"PF":
             fail(f"{path}: not a colour PFM")
         width, height = (int(x) for x in f.readline().split())
         scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    if data.size != width * height * 3:
-        fail(f"{path}: {data.size} floats for {width}x{height}x3")
-    return data.reshape(height, width, 3)
+        rgb = array.array("f")
+        rgb.frombytes(f.read())
+    if (scale < 0) != (sys.byteorder == "little"):  # a negative scale means little-endian
+        rgb.byteswap()
+    if len(rgb) != width * height * 3:
+        fail(f"{path}: {len(rgb)} floats for {width}x{height}x3")
+    return width, height, rgb
 
 
 def geocold_picture(args, view, spp: int):
@@ -154,7 +161,10 @@ def geocold_picture(args, view, spp: int):
         run = subprocess.run(command, capture_output=True, text=True)
         if run.returncode != 0:
             fail(f"{' '.join(command)} exited {run.returncode}:\n{run.stderr}")
-        return read_pfm(out)
+        width, height, rgb = read_pfm(out)
+        if (width, height) != (view["width"], view["height"]):
+            fail(f"geocold-cl drew {width}x{height}, not the view's {view['width']}x{view['height']}")
+        return rgb
 
 
 def measure_scene(args, scene_name: str) -> dict:
@@ -176,8 +186,10 @@ def measure_scene(args, scene_name: str) -> dict:
     spp = max(1, round(spp * args.seconds / seconds))
     _, image = mitsuba_render(scene, integrator, spp, 2)
 
+    import numpy as np
+
     ours_mean = luminance_mean(geocold_picture(args, view, max(spp, 16)))
-    theirs_mean = luminance_mean(image)
+    theirs_mean = luminance_mean(np.asarray(image, dtype=np.float64)[..., :3].reshape(-1))
     diff = 100.0 * abs(ours_mean - theirs_mean) / max(theirs_mean, 1e-12)
     print(f"== {scene_name}: {view['width']}x{view['height']}, depth {view['max_depth']}, no Russian roulette; "
           f"mean luminance ours {ours_mean:.5f}, Mitsuba {theirs_mean:.5f} ({diff:.2f} % apart, bound "
