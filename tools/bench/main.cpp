@@ -117,7 +117,10 @@ Options parse(int argc, char** argv)
                         "                     [--no-rays] [--no-first-image] [--no-packet-probe] [--threads N]\n"
                         "--threads N caps every CPU thread of the run: PoCL's workers, Embree's and the host's\n"
                         "(default: every core). With --threads 1 the per-core figure is one thread's, the\n"
-                        "conditions of the Mitsuba llvm_ad_rgb anchor.\n");
+                        "conditions of the Mitsuba llvm_ad_rgb anchor.\n"
+                        "--json puts each scene's view in the document too; tools/bench/mitsuba_yardstick.py\n"
+                        "reads it to time Mitsuba 3 on the same view in the same run (the anchors are fixed\n"
+                        "figures from another day).\n");
             std::exit(0);
         } else {
             throw UsageError("unknown option '" + a + "' (see --help)");
