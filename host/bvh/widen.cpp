@@ -17,6 +17,22 @@ namespace {
 
 constexpr std::uint32_t kBlockLanes = 4;
 
+// The largest BVH2 subtree that becomes one wide leaf, tested block by block instead of
+// through a node of its own: one block's worth, except in the BVH8 of a large scene, where
+// up to two blocks. There a node visit is mostly a cache miss (the dragon's BVH8 is 8 MB,
+// beyond a core's 2 MB L2), and fewer, fuller leaves save more node visits than their extra
+// triangle tests cost. H200 host, PoCL on 16 cores, against Embree's best in the same run,
+// medians of 4 interleaved rounds, leaves of up to 4 -> up to 8 triangles:
+//   5.2M triangles: primary 0.505 -> 0.535x, diffuse 0.475 -> 0.51x, shadow 0.655 -> 0.725x,
+//                   path samples 1.08x, device bytes per triangle 197 -> 181;
+//   dragon (100k):  primary 0.53 -> 0.535x, diffuse 0.655 -> 0.69x, shadow 0.735 -> 0.775x,
+//                   path samples 0.97x (its 320x240 figure swings 15 % from run to run).
+// On the Cornell box (36 triangles, all in L1) the same rule cost primary and shadow rays
+// 6-9 %, hence the size threshold. The BVH4 (CPUs without 8-wide SIMD) was not measured
+// with it and keeps one block.
+constexpr std::uint32_t kLargeSceneTriangles = 65536;
+constexpr std::uint32_t kLargeSceneLeafTriangles = 2 * kBlockLanes;
+
 struct Bvh2View {
     const FlatBvh& bvh;
     // Per BVH2 node: its subtree's triangles, [tri_first, tri_end) in bvh.triangles.
@@ -29,12 +45,14 @@ struct Bvh2View {
     // Every wide inner node opens a BVH2 node that does not become a leaf, so their number
     // bounds the wide nodes (the output is reserved once, not regrown).
     std::size_t inner_bound = 0;
+    // Subtrees of at most this many triangles become one wide leaf (wide_leaf_triangles).
+    std::uint32_t leaf_triangles = kBlockLanes;
 
     bool is_leaf(std::uint32_t n) const { return dev::gc_node_is_leaf(bvh.nodes[n]); }
     std::uint32_t first(std::uint32_t n) const { return dev::gc_node_first(bvh.nodes[n]); }
     std::uint32_t triangles(std::uint32_t n) const { return tri_end[n] - tri_first[n]; }
-    // A subtree tested as one leaf: a BVH2 leaf, or any subtree that fits one block.
-    bool becomes_leaf(std::uint32_t n) const { return is_leaf(n) || triangles(n) <= kBlockLanes; }
+    // A subtree tested as one leaf: a BVH2 leaf, or any subtree of at most leaf_triangles.
+    bool becomes_leaf(std::uint32_t n) const { return is_leaf(n) || triangles(n) <= leaf_triangles; }
     float area(std::uint32_t n) const
     {
         const dev::GcBvhNode& node = bvh.nodes[n];
@@ -411,7 +429,7 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh, int threads)
         out.blocks.push_back(empty_block());
         return out;
     }
-    Bvh2View view{bvh, {}, {}, {}, 0};
+    Bvh2View view{bvh, {}, {}, {}, 0, wide_leaf_triangles(Width, bvh.scene_triangle_count())};
     compute_ranges(view);
     const std::size_t blocks = view.blocks_below[0];
     if (view.becomes_leaf(0)) {
@@ -472,6 +490,11 @@ WideBvhOf<Node> widen_to(const FlatBvh& bvh, int threads)
 }
 
 }  // namespace
+
+std::uint32_t wide_leaf_triangles(std::uint32_t width, std::size_t scene_triangles)
+{
+    return width == 8 && scene_triangles >= kLargeSceneTriangles ? kLargeSceneLeafTriangles : kBlockLanes;
+}
 
 WideBvh widen(const FlatBvh& bvh, int threads)
 {

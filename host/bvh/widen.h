@@ -26,9 +26,9 @@ using WideBvh = WideBvhOf<dev::GcBvh4Node>;
 using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h)
 
 // Collapse rules (after Embree's BVH4 builders, and Wald et al. 2008, "Getting rid of
-// packets"): a BVH2 subtree with at most four triangles becomes one leaf of one block, tested
-// by one 4-wide triangle test instead of a box test per node; a larger BVH2 leaf becomes a
-// leaf of ceil(count / 4) blocks; an inner node takes its two children and repeatedly opens
+// packets"): a BVH2 subtree with at most wide_leaf_triangles triangles (four, one block; eight
+// in the BVH8 of a scene of 65536 triangles or more) becomes one leaf, tested block by block
+// instead of a box test per node; a larger BVH2 leaf becomes a leaf of ceil(count / 4) blocks; an inner node takes its two children and repeatedly opens
 // the child with the largest surface area that is not such a leaf, until it has four. The
 // BVH4 is never deeper than the BVH2, so gc_traverse4.h's stack bound holds.
 //
@@ -36,6 +36,10 @@ using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h
 // several threads and spliced into the serial walk's order, the same bytes.
 WideBvh widen(const FlatBvh& bvh, int threads = 0);  // 0: host_thread_count()
 Wide8Bvh widen8(const FlatBvh& bvh, int threads = 0);  // the same rules with eight children per node
+
+// The largest BVH2 subtree that becomes one leaf in a `width`-wide BVH of a scene of
+// `scene_triangles` triangles (widen.cpp says why and what it measured).
+std::uint32_t wide_leaf_triangles(std::uint32_t width, std::size_t scene_triangles);
 
 // Bytes the layout occupies on a device.
 template <class Node>

@@ -21,6 +21,7 @@ struct WideShape {
     std::size_t used_lanes = 0;
     std::size_t depth = 0; // edges from the root to the deepest inner node
     std::uint32_t max_blocks = 0; // most blocks in one leaf
+    std::size_t min_inner_triangles = 0; // fewest triangles below a non-root inner node (0: none)
 };
 
 // One child slot of a BVH4 or BVH8 node, so one checker serves both layouts.
@@ -75,7 +76,9 @@ WideShape check_wide(const Wide& wide, const Scene& scene)
     auto fail = [&](const std::string& what) {
         if (++failures <= 10) ADD_FAILURE() << what;
     };
-    std::function<void(std::uint32_t, std::size_t)> visit = [&](std::uint32_t index, std::size_t depth) {
+    // Returns the triangles below node `index`.
+    std::function<std::size_t(std::uint32_t, std::size_t)> visit = [&](std::uint32_t index, std::size_t depth) {
+        const std::size_t lanes_before = shape.used_lanes;
         ++node_seen[index];
         shape.depth = std::max(shape.depth, depth);
         const std::vector<Slot>& n = nodes[index];
@@ -99,7 +102,8 @@ WideShape check_wide(const Wide& wide, const Scene& scene)
                     if (!slot.contains(c.lo[0], c.lo[1], c.lo[2]) || !slot.contains(c.hi[0], c.hi[1], c.hi[2]))
                         fail("node " + std::to_string(ref) + " is not inside its parent's slot");
                 }
-                visit(ref, depth + 1);
+                const std::size_t below = visit(ref, depth + 1);
+                if (shape.min_inner_triangles == 0 || below < shape.min_inner_triangles) shape.min_inner_triangles = below;
                 continue;
             }
             ++shape.leaves;
@@ -136,6 +140,7 @@ WideShape check_wide(const Wide& wide, const Scene& scene)
                 }
             }
         }
+        return shape.used_lanes - lanes_before;
     };
     visit(0, 0);
     for (std::size_t p = 0; p < prim_seen.size(); ++p)
@@ -171,6 +176,33 @@ TEST(WideBvh, CoversEveryTriangleOnceForEveryLeafSize)
         check(widen8(bvh), "BVH8", s.nodes / 4);
         expect_agreement(compare_with_brute_force(bvh, scene, mixed_rays(scene, 3000, 22)), "wide vs brute force");
     }
+}
+
+// The BVH8 of a large scene makes every subtree of up to eight triangles one leaf (two
+// blocks at most), so no inner node below the root holds eight or fewer; smaller scenes and
+// the BVH4 keep one block's worth. The hits stay the BVH2's, bit for bit.
+TEST(WideBvh, LargeScenesGetLeavesOfUpToEightTrianglesInTheirBvh8)
+{
+    EXPECT_EQ(wide_leaf_triangles(8, 65535), 4u);
+    EXPECT_EQ(wide_leaf_triangles(8, 65536), 8u);
+    EXPECT_EQ(wide_leaf_triangles(4, 1u << 22), 4u);
+    const Scene small = random_soup(20000, 43, 0.02f);
+    const WideShape small_shape = check_wide(widen8(build_bvh(small)), small);
+    const Scene large = random_soup(70000, 41, 0.02f);
+    const FlatBvh bvh = build_bvh(large);
+    const Wide8Bvh wide8 = widen8(bvh);
+    const WideShape shape = check_wide(wide8, large);
+    const WideShape shape4 = check_wide(widen(bvh), large);
+    std::printf("[ wide, leaves ] fewest triangles under an inner node: BVH8 of 20k triangles %zu, of 70k %zu "
+                "(%zu nodes, up to %u blocks per leaf); BVH4 of 70k %zu\n",
+                small_shape.min_inner_triangles, shape.min_inner_triangles, wide8.nodes.size(), shape.max_blocks,
+                shape4.min_inner_triangles);
+    EXPECT_GT(shape.min_inner_triangles, 8u);
+    EXPECT_EQ(shape.max_blocks, 2u) << "the builder's leaves hold up to 4 triangles, so two blocks at most";
+    EXPECT_LE(small_shape.min_inner_triangles, 8u) << "a small scene's BVH8 keeps one-block leaves";
+    EXPECT_LE(shape4.min_inner_triangles, 8u) << "the BVH4 keeps one-block leaves";
+    std::vector<Ray> rays = mixed_rays(large, 1500, 44);
+    expect_agreement(compare_with_brute_force(bvh, large, rays), "BVH8 with two-block leaves vs brute force");
 }
 
 template <class Bvh>
