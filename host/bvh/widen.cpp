@@ -18,20 +18,27 @@ namespace {
 constexpr std::uint32_t kBlockLanes = 4;
 
 // The largest BVH2 subtree that becomes one wide leaf, tested block by block instead of
-// through a node of its own: one block's worth, except in the BVH8 of a large scene, where
-// up to two blocks. There a node visit is mostly a cache miss (the dragon's BVH8 is 8 MB,
-// beyond a core's 2 MB L2), and fewer, fuller leaves save more node visits than their extra
-// triangle tests cost. H200 host, PoCL on 16 cores, against Embree's best in the same run,
-// medians of 4 interleaved rounds, leaves of up to 4 -> up to 8 triangles:
-//   5.2M triangles: primary 0.505 -> 0.535x, diffuse 0.475 -> 0.51x, shadow 0.655 -> 0.725x,
-//                   path samples 1.08x, device bytes per triangle 197 -> 181;
-//   dragon (100k):  primary 0.53 -> 0.535x, diffuse 0.655 -> 0.69x, shadow 0.735 -> 0.775x,
-//                   path samples 0.97x (its 320x240 figure swings 15 % from run to run).
-// On the Cornell box (36 triangles, all in L1) the same rule cost primary and shadow rays
-// 6-9 %, hence the size threshold. The BVH4 (CPUs without 8-wide SIMD) was not measured
-// with it and keeps one block.
-constexpr std::uint32_t kLargeSceneTriangles = 65536;
+// through a node of its own: one block's worth, except in the BVH8 of a large scene. There a
+// node visit is mostly a cache miss, and fewer, fuller leaves save more node visits than
+// their extra triangle tests cost: the larger the tree, the longer the leaves that pay.
+// H200 host, PoCL on 16 cores, rays against Embree's best in the same run, medians of
+// interleaved rounds:
+//   dragon (100k triangles, an 8 MB BVH8, beyond a core's 2 MB L2), leaves of up to 4 -> 8
+//     triangles: primary 0.53 -> 0.535x, diffuse 0.655 -> 0.69x, shadow 0.735 -> 0.775x,
+//     path samples 0.97x (its 320x240 figure swings 15 % from run to run); up to 16
+//     triangles lost 5-7 % against 8;
+//   5.2M triangles (about 1 GB, beyond the L3), 4 -> 8 (4 rounds): primary 0.505 -> 0.535x,
+//     diffuse 0.475 -> 0.51x, shadow 0.655 -> 0.725x, path 1.08x; 8 -> 16 (medians of 6
+//     per-round ratios over two allocations): primary 1.06x, diffuse 1.06x, path 1.08x (3);
+//     device bytes per triangle 197 -> 181 -> 168.
+// On the Cornell box (36 triangles, all in L1) leaves of up to 8 cost primary and shadow
+// rays 6-9 %, hence the thresholds. Scenes between the dragon and the 5.2M one were not
+// measured: the second threshold is where the BVH8 outgrows most L3 caches. The BVH4 (CPUs
+// without 8-wide SIMD) was not measured with longer leaves and keeps one block.
+constexpr std::uint32_t kLargeSceneTriangles = 65536;    // its BVH8 is beyond a core's L2
 constexpr std::uint32_t kLargeSceneLeafTriangles = 2 * kBlockLanes;
+constexpr std::uint32_t kHugeSceneTriangles = 1u << 20;  // ~170 MB: beyond most L3 caches
+constexpr std::uint32_t kHugeSceneLeafTriangles = 4 * kBlockLanes;
 
 struct Bvh2View {
     const FlatBvh& bvh;
@@ -493,7 +500,9 @@ WideBvhOf<Node> widen_to(const FlatBvh& bvh, int threads)
 
 std::uint32_t wide_leaf_triangles(std::uint32_t width, std::size_t scene_triangles)
 {
-    return width == 8 && scene_triangles >= kLargeSceneTriangles ? kLargeSceneLeafTriangles : kBlockLanes;
+    if (width != 8) return kBlockLanes;
+    if (scene_triangles >= kHugeSceneTriangles) return kHugeSceneLeafTriangles;
+    return scene_triangles >= kLargeSceneTriangles ? kLargeSceneLeafTriangles : kBlockLanes;
 }
 
 WideBvh widen(const FlatBvh& bvh, int threads)

@@ -178,31 +178,47 @@ TEST(WideBvh, CoversEveryTriangleOnceForEveryLeafSize)
     }
 }
 
-// The BVH8 of a large scene makes every subtree of up to eight triangles one leaf (two
-// blocks at most), so no inner node below the root holds eight or fewer; smaller scenes and
-// the BVH4 keep one block's worth. The hits stay the BVH2's, bit for bit.
-TEST(WideBvh, LargeScenesGetLeavesOfUpToEightTrianglesInTheirBvh8)
+// The BVH8 of a large scene makes every subtree of up to eight triangles one leaf (sixteen
+// from 2^20 triangles on), so no inner node below the root holds that few; smaller scenes
+// and the BVH4 keep one block's worth. The hits stay the BVH2's, bit for bit.
+TEST(WideBvh, LargerScenesGetLongerLeavesInTheirBvh8)
 {
     EXPECT_EQ(wide_leaf_triangles(8, 65535), 4u);
     EXPECT_EQ(wide_leaf_triangles(8, 65536), 8u);
+    EXPECT_EQ(wide_leaf_triangles(8, (1u << 20) - 1), 8u);
+    EXPECT_EQ(wide_leaf_triangles(8, 1u << 20), 16u);
     EXPECT_EQ(wide_leaf_triangles(4, 1u << 22), 4u);
-    const Scene small = random_soup(20000, 43, 0.02f);
-    const WideShape small_shape = check_wide(widen8(build_bvh(small)), small);
-    const Scene large = random_soup(70000, 41, 0.02f);
-    const FlatBvh bvh = build_bvh(large);
-    const Wide8Bvh wide8 = widen8(bvh);
-    const WideShape shape = check_wide(wide8, large);
-    const WideShape shape4 = check_wide(widen(bvh), large);
-    std::printf("[ wide, leaves ] fewest triangles under an inner node: BVH8 of 20k triangles %zu, of 70k %zu "
-                "(%zu nodes, up to %u blocks per leaf); BVH4 of 70k %zu\n",
-                small_shape.min_inner_triangles, shape.min_inner_triangles, wide8.nodes.size(), shape.max_blocks,
-                shape4.min_inner_triangles);
-    EXPECT_GT(shape.min_inner_triangles, 8u);
-    EXPECT_EQ(shape.max_blocks, 2u) << "the builder's leaves hold up to 4 triangles, so two blocks at most";
-    EXPECT_LE(small_shape.min_inner_triangles, 8u) << "a small scene's BVH8 keeps one-block leaves";
-    EXPECT_LE(shape4.min_inner_triangles, 8u) << "the BVH4 keeps one-block leaves";
-    std::vector<Ray> rays = mixed_rays(large, 1500, 44);
-    expect_agreement(compare_with_brute_force(bvh, large, rays), "BVH8 with two-block leaves vs brute force");
+    struct Case {
+        std::size_t triangles;
+        std::uint32_t leaf;  // the rule's leaf size for that scene
+        std::size_t rays;
+    };
+    for (const Case c : {Case{20000, 4, 0}, Case{70000, 8, 1500}, Case{(std::size_t{1} << 20) + 20000, 16, 3000}}) {
+        const Scene scene = random_soup(c.triangles, 41, c.triangles > 100000 ? 0.005f : 0.02f);
+        const FlatBvh bvh = build_bvh(scene);
+        const Wide8Bvh wide8 = widen8(bvh);
+        const WideShape shape = check_wide(wide8, scene);
+        std::printf("[ wide, leaves ] %zu triangles: BVH8 %zu nodes, up to %u blocks per leaf, fewest triangles "
+                    "under an inner node %zu (leaves up to %u)\n",
+                    c.triangles, wide8.nodes.size(), shape.max_blocks, shape.min_inner_triangles, c.leaf);
+        EXPECT_GT(shape.min_inner_triangles, c.leaf) << c.triangles << " triangles";
+        if (c.leaf == 4) {
+            EXPECT_LE(shape.min_inner_triangles, 8u) << "a small scene's BVH8 keeps one-block leaves";
+        }
+        if (c.leaf > 4) {
+            // The builder's leaves hold up to 4 triangles, so a leaf's blocks are up to c.leaf / 4.
+            EXPECT_EQ(shape.max_blocks, c.leaf / 4) << c.triangles << " triangles";
+            const WideShape shape4 = check_wide(widen(bvh), scene);
+            EXPECT_LE(shape4.min_inner_triangles, 8u) << "the BVH4 keeps one-block leaves";
+        }
+        if (c.rays == 0) continue;
+        std::size_t differ = 0;
+        for (const Ray& r : mixed_rays(scene, c.rays, 44))
+            if (!same_bits(trace_closest(wide8, r), trace_closest(bvh, r)) || trace_any(wide8, r) != trace_any(bvh, r))
+                ++differ;
+        std::printf("[ wide, leaves ] %zu rays: BVH8 and BVH2 hits differ on %zu\n", c.rays, differ);
+        EXPECT_EQ(differ, 0u);
+    }
 }
 
 template <class Bvh>
