@@ -24,9 +24,10 @@ struct RaySet {
 // scene's bounds. Deterministic: a ray's random numbers are a hash of its index.
 RaySet make_rays(const Scene& scene, const FlatBvh& bvh, const Camera& camera, int width, int height, int threads);
 
-// Average work per ray of gc_traverse.h's ordered traversal, counted on the host over the
-// first `sample` rays: inner-node visits (each reads both 32-byte children), leaves and
-// triangle tests (48 bytes each). The GPU roofline estimate is built from these.
+// Average work per ray of gc_traverse.h's ordered traversal, counted on the host over
+// `sample` rays spread evenly through the set: inner-node visits (each reads both 32-byte
+// children), leaves and triangle tests (48 bytes each). The GPU roofline estimate is built
+// from these.
 struct TraversalCost {
     double inner_visits = 0.0;
     double leaf_visits = 0.0;
