@@ -26,11 +26,12 @@ using WideBvh = WideBvhOf<dev::GcBvh4Node>;
 using Wide8Bvh = WideBvhOf<dev::GcBvh8Node>;  // for 8-wide SIMD (gc_traverse8.h)
 
 // Collapse rules (after Embree's BVH4 builders, and Wald et al. 2008, "Getting rid of
-// packets"): a BVH2 subtree with at most wide_leaf_triangles triangles (four, one block; in the
-// BVH8 eight from 65536 scene triangles on, sixteen from 2^20) becomes one leaf, tested block by block
-// instead of a box test per node; a larger BVH2 leaf becomes a leaf of ceil(count / 4) blocks; an inner node takes its two children and repeatedly opens
-// the child with the largest surface area that is not such a leaf, until it has four. The
-// BVH4 is never deeper than the BVH2, so gc_traverse4.h's stack bound holds.
+// packets"): a BVH2 subtree with at most wide_leaf_triangles triangles (four, one block; in
+// the BVH8 eight from 65536 scene triangles on, sixteen from 2^20) becomes one leaf, tested
+// block by block instead of a box test per node; a larger BVH2 leaf becomes a leaf of
+// ceil(count / 4) blocks; an inner node takes its two children and repeatedly opens the
+// child with the largest surface area that is not such a leaf, until it has four. The BVH4
+// is never deeper than the BVH2, so gc_traverse4.h's stack bound holds.
 //
 // `threads` (0: all cores) only changes how fast: large trees are collapsed in subtrees on
 // several threads and spliced into the serial walk's order, the same bytes.
