@@ -37,8 +37,9 @@ std::string device_key(const cl::DeviceInfo& device, const std::vector<cl::Devic
 FirstImage run_first_image(const std::string& key, const std::string& cache_root, bool tiny);
 
 // The child's side: renders, prints one line
-// "first-image <total> <compile> <render> <cached> <devices> <context>" on stdout. Returns the process exit code; when no device matches the key, says so on
-// stderr with the devices this process sees.
+// "first-image <total> <compile> <render> <cached> <devices> <context>" on stdout. Returns
+// the process exit code; when no device matches the key, says so on stderr with the devices
+// this process sees.
 int first_image_child(const std::string& key, bool tiny);
 
 }  // namespace gc::bench

@@ -17,10 +17,7 @@ namespace {
 
 dev::GcRay ray(float ox, float oy, float oz, float dx, float dy, float dz)
 {
-    dev::GcRay r;
-    r.org_tmin = dev::float4(ox, oy, oz, 0.0f);
-    r.dir_tmax = dev::float4(dx, dy, dz, GC_RAY_UNBOUNDED);
-    return r;
+    return dev::gc_make_ray({ox, oy, oz}, {dx, dy, dz}, 0.0f, GC_RAY_UNBOUNDED);
 }
 
 TEST(BenchRays, TraversalCostCountsRaysFromTheWholeSet)
