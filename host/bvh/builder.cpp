@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -204,7 +205,18 @@ struct Split {
     float cost = kInf; // sum over both sides of area * count (not yet normalised)
     Box4 left_box;     // bounds of the triangles on each side, the union of their bins
     Box4 right_box;
+    // For a node partitioned stably: how many of each binning chunk's triangles go left, in
+    // chunk order (chunk_begin() cuts the node); partition_stable places each chunk's runs
+    // by these counts before it reads a triangle.
+    std::vector<std::uint32_t> chunk_lefts;
 };
+
+// The node's triangles [begin, begin + n) cut into `chunks` runs: where run c begins. The
+// binning and the stable partition of a node cut it alike.
+inline std::uint32_t chunk_begin(std::uint32_t begin, std::uint32_t n, std::uint32_t c, std::uint32_t chunks)
+{
+    return begin + static_cast<std::uint32_t>(std::uint64_t{n} * c / chunks);
+}
 
 // Whether split `s` sends reference `r` to the left child; `centre` gets r's centroid, which
 // the children's centroid bounds are made of.
@@ -221,6 +233,8 @@ inline bool goes_left(const Split& s, const PrimRef& r, Vec4& centre)
 
 // A node to build: its slot in the node array, its triangles refs[begin, end), its depth and
 // bounds (of the triangles and of their centroids), known from the parent's partition.
+// `refs` is the reference array or the scratch array, whichever the node's triangles lie in
+// (partition_stable moves a node's triangles from one into the other).
 struct NodeJob {
     std::uint32_t slot;
     std::uint32_t begin;
@@ -228,6 +242,7 @@ struct NodeJob {
     std::uint32_t depth;
     Box4 box;
     Box4 cbox;
+    PrimRef* refs;
 };
 
 class Builder {
@@ -236,9 +251,11 @@ public:
         : m_refs(refs), m_tree(tree), m_options(options), m_pool(pool),
           m_arenas(static_cast<std::size_t>(pool.threads()))
     {
-        // partition_stable's out-of-place pass: node ranges are disjoint, so one array serves
-        // every node being partitioned at the same time.
+        // partition_stable's other array: node ranges are disjoint, so one array serves every
+        // node being partitioned at the same time.
         if (refs.size() >= kStablePartitionPrims) m_scratch.resize(refs.size());
+        // Written leaf by leaf (make_leaf), every entry once.
+        m_tree.prim_indices.resize(refs.size());
         m_min_task_prims = std::clamp<std::uint32_t>(
             static_cast<std::uint32_t>(refs.size() / (static_cast<std::size_t>(pool.threads()) * kTasksPerThread)),
             kMinTaskFloor, kMinTaskCeiling);
@@ -251,7 +268,7 @@ public:
 
     void build_root(const Box4& box, const Box4& cbox)
     {
-        build(NodeJob{0, 0, static_cast<std::uint32_t>(m_refs.size()), 0, box, cbox});
+        build(NodeJob{0, 0, static_cast<std::uint32_t>(m_refs.size()), 0, box, cbox, m_refs.data()});
         // Slots left in the threads' last blocks are never referenced; zero them so the
         // array holds no uninitialised bytes, then drop the unused tail.
         const std::uint32_t used = m_next_block.load();
@@ -290,7 +307,7 @@ private:
         // keep every leaf at depth <= kMaxTreeDepth.
         const bool median_only =
             job.depth + static_cast<std::uint32_t>(std::bit_width(n - 1)) >= kMaxTreeDepth;
-        if (n == 1 || (median_only && n <= max_leaf)) return make_leaf(node, job.begin, n);
+        if (n == 1 || (median_only && n <= max_leaf)) return make_leaf(node, job);
 
         Split split;
         if (!median_only) split = find_split(job);
@@ -303,17 +320,17 @@ private:
             const float split_cost = area > 0.0f
                                          ? m_options.traversal_cost + m_options.intersection_cost * split.cost / area
                                          : kInf;
-            if (split.axis < 0 || leaf_cost <= split_cost) return make_leaf(node, job.begin, n);
+            if (split.axis < 0 || leaf_cost <= split_cost) return make_leaf(node, job);
         }
 
         const std::uint32_t pair = allocate_pair();
         node.first = pair;
         node.count = 0;
-        NodeJob left{pair, job.begin, 0, job.depth + 1, {}, {}};
-        NodeJob right{pair + 1, 0, job.end, job.depth + 1, {}, {}};
+        NodeJob left{pair, job.begin, 0, job.depth + 1, {}, {}, job.refs};
+        NodeJob right{pair + 1, 0, job.end, job.depth + 1, {}, {}, job.refs};
         if (split.axis >= 0) {
-            left.end = n >= kStablePartitionPrims ? partition_stable(split, job.begin, job.end, left, right)
-                                                  : partition(split, job.begin, job.end, left, right);
+            left.end = n >= kStablePartitionPrims ? partition_stable(split, job, left, right)
+                                                  : partition(split, job, left, right);
         } else {
             left.end = median_split(job, left, right);
         }
@@ -331,10 +348,13 @@ private:
         }
     }
 
-    static void make_leaf(BvhBuildNode& node, std::uint32_t begin, std::uint32_t n)
+    // Also writes the leaf's entries of prim_indices, while its references are in cache.
+    void make_leaf(BvhBuildNode& node, const NodeJob& job)
     {
-        node.first = begin;
-        node.count = n;
+        node.first = job.begin;
+        node.count = job.end - job.begin;
+        std::uint32_t* out = m_tree.prim_indices.data();
+        for (std::uint32_t i = job.begin; i < job.end; ++i) out[i] = prim_of(job.refs[i]);
     }
 
     // Wald 2007: bin centroids on all three axes in one pass, then sweep the bins from both
@@ -369,7 +389,8 @@ private:
         map.top = simd::splat(static_cast<float>(bins - 1));
 
         BinSet local;
-        const BinSet& bin = bin_node(job, map, local);
+        ChunkBins chunked;
+        const BinSet& bin = bin_node(job, map, local, chunked);
 
         // Sweep all three axes at once: per boundary, the three axes' boxes are grown and
         // their areas computed in one vector. The winner is the lexicographic minimum of
@@ -425,14 +446,29 @@ private:
         if (best.axis >= 0) {
             for (int i = 0; i < bins; ++i)
                 (i < best.bin ? best.left_box : best.right_box).grow(bin.lo[best.axis][i], bin.hi[best.axis][i]);
+            if (n >= kStablePartitionPrims) {
+                if (chunked.chunks == 0) {
+                    best.chunk_lefts.assign(1, left_count[best.bin - 1][best.axis]);
+                } else {
+                    best.chunk_lefts.assign(chunked.chunks, 0);
+                    for (std::uint32_t c = 0; c < chunked.chunks; ++c)
+                        for (int i = 0; i < best.bin; ++i) best.chunk_lefts[c] += chunked.sets[c].count[best.axis][i];
+                }
+            }
         }
         best.map = map;
         return best;
     }
 
+    // The per-chunk bins of a node binned in chunks (chunks == 0: binned in one piece).
+    struct ChunkBins {
+        std::unique_ptr<BinSet[]> sets;
+        std::uint32_t chunks = 0;
+    };
+
     // Bins the node's triangles into `local` (returned), a large node in chunks on several
-    // threads whose sets are merged into it.
-    const BinSet& bin_node(const NodeJob& job, const BinMap& map, BinSet& local)
+    // threads whose sets are merged into it and kept in `chunked`.
+    const BinSet& bin_node(const NodeJob& job, const BinMap& map, BinSet& local, ChunkBins& chunked)
     {
         const std::uint32_t n = job.end - job.begin;
         const auto chunks = static_cast<std::uint32_t>(
@@ -440,20 +476,22 @@ private:
         if (n < kParallelBinPrims || chunks < 2) {
             local.reset(map.bins);
             if (n < kSplitBinPrims) {
-                local.add(m_refs.data(), job.begin, job.end, map);
+                local.add(job.refs, job.begin, job.end, map);
             } else {
                 BinSet spare;
-                local.add_split(m_refs.data(), job.begin, job.end, map, spare);
+                local.add_split(job.refs, job.begin, job.end, map, spare);
             }
             return local;
         }
-        auto sets = std::make_unique<BinSet[]>(chunks);
-        m_pool.for_each(chunks, [&, n, chunks](std::size_t c) {
-            const std::uint32_t b = job.begin + static_cast<std::uint32_t>(std::uint64_t{n} * c / chunks);
-            const std::uint32_t e = job.begin + static_cast<std::uint32_t>(std::uint64_t{n} * (c + 1) / chunks);
+        chunked.sets = std::make_unique<BinSet[]>(chunks);
+        chunked.chunks = chunks;
+        BinSet* sets = chunked.sets.get();
+        m_pool.for_each(chunks, [&, n, chunks, sets](std::size_t c) {
+            const auto chunk = static_cast<std::uint32_t>(c);
             BinSet spare;
             sets[c].reset(map.bins);
-            sets[c].add_split(m_refs.data(), b, e, map, spare);
+            sets[c].add_split(job.refs, chunk_begin(job.begin, n, chunk, chunks),
+                              chunk_begin(job.begin, n, chunk + 1, chunks), map, spare);
         });
         local.reset(map.bins);
         for (std::uint32_t c = 0; c < chunks; ++c) local.merge(sets[c], map.bins);
@@ -471,12 +509,12 @@ private:
     // branches on the side (Lomuto's scheme, always swapping): the sides of neighbouring
     // triangles are unpredictable, and mispredictions cost more than the extra stores. The
     // children's centroid bounds are gathered on the way; their boxes come from the bins.
-    std::uint32_t partition(const Split& s, std::uint32_t begin, std::uint32_t end, NodeJob& left, NodeJob& right)
+    std::uint32_t partition(const Split& s, const NodeJob& job, NodeJob& left, NodeJob& right)
     {
-        PrimRef* refs = m_refs.data();
+        PrimRef* refs = job.refs;
         Box4 cbox[2]; // [0]: right, [1]: left
-        std::uint32_t i = begin;
-        for (std::uint32_t k = begin; k < end; ++k) {
+        std::uint32_t i = job.begin;
+        for (std::uint32_t k = job.begin; k < job.end; ++k) {
             Vec4 c;
             const int left_side = goes_left(s, refs[k], c) ? 1 : 0;
             cbox[left_side].grow_point(c);
@@ -495,69 +533,73 @@ private:
 
     // The partition of a large node, on several threads: a stable one (the left triangles
     // first, each side in its previous order), whose result is unique, so the chunks do not
-    // change it. Each chunk partitions itself into m_scratch (its left triangles forward
-    // from its start, its right ones backward from its end) and gathers the centroid bounds
-    // of both sides; a prefix sum over the chunks' left counts then gives every run its
-    // place, and the chunks copy their runs back. Lomuto's in-place scheme below cannot be cut
-    // into chunks: the order it leaves the right side in depends on the whole scan before, so
-    // with it the top levels' partitions ran on one thread each. The 5.2M-triangle scene on
-    // the H200 host's 16 cores: the tree in 247-286 ms instead of 302-329 ms (two interleaved
-    // rounds of three). On one thread the two passes cost more than Lomuto's one: +2-4 % with
-    // nodes of 2^20 triangles and up taking them, +8-12 % from 2^16 up; hence 2^20.
-    std::uint32_t partition_stable(const Split& s, std::uint32_t begin, std::uint32_t end, NodeJob& left, NodeJob& right)
+    // change it. Lomuto's in-place scheme below cannot be cut into chunks: the order it leaves
+    // the right side in depends on the whole scan before, so with it the top levels'
+    // partitions ran on one thread each (5.2M triangles, H200 host's 16 cores: the tree in
+    // 302-329 ms, and 247-286 ms with chunks that went through scratch and back).
+    //
+    // The node's triangles move into the other array (m_refs <-> m_scratch), where its
+    // children are then built, so each reference is read once and written once. The binning
+    // chunks' left counts (split.chunk_lefts) place each chunk's left and right runs before a
+    // triangle is read; each chunk then writes both runs forward, gathering the centroid
+    // bounds of both sides. Against the copy back, same runs: rtcBuildBVH speed 0.97x -> 1.02x
+    // (medians of 5 interleaved rounds, per-round gain 0.99-1.10x). On one thread the
+    // out-of-place pass still costs more than Lomuto's, hence the 2^20 threshold.
+    std::uint32_t partition_stable(const Split& s, const NodeJob& job, NodeJob& left, NodeJob& right)
     {
-        const std::uint32_t n = end - begin;
-        const auto chunks = std::max<std::uint32_t>(
-            1, std::min<std::uint32_t>(static_cast<std::uint32_t>(m_pool.threads()), n / kMinBinChunkPrims));
-        auto chunk_begin = [&](std::size_t c) {
-            return begin + static_cast<std::uint32_t>(std::uint64_t{n} * c / chunks);
-        };
-        struct Run {
-            std::uint32_t lefts = 0;
-            Box4 cbox[2]; // [0]: right, [1]: left
-        };
-        std::vector<Run> runs(chunks);
-        PrimRef* refs = m_refs.data();
-        PrimRef* scratch = m_scratch.data();
-        m_pool.for_each(chunks, [&](std::size_t c) {
-            Run& run = runs[c];
-            std::uint32_t l = chunk_begin(c);
-            std::uint32_t r = chunk_begin(c + 1);
-            for (std::uint32_t k = chunk_begin(c); k < chunk_begin(c + 1); ++k) {
-                Vec4 centre;
-                const bool left_side = goes_left(s, refs[k], centre);
-                run.cbox[left_side ? 1 : 0].grow_point(centre);
-                scratch[left_side ? l++ : --r] = refs[k];
-            }
-            run.lefts = l - chunk_begin(c);
-        });
+        const std::uint32_t n = job.end - job.begin;
+        const auto chunks = static_cast<std::uint32_t>(s.chunk_lefts.size());
+        // Per chunk: its first triangle, and where its left and its right run go.
+        std::vector<std::uint32_t> first(chunks + 1);
         std::vector<std::uint32_t> left_at(chunks);
         std::vector<std::uint32_t> right_at(chunks);
+        for (std::uint32_t c = 0; c <= chunks; ++c) first[c] = chunk_begin(job.begin, n, c, chunks);
         std::uint32_t lefts = 0;
         for (std::uint32_t c = 0; c < chunks; ++c) {
-            left_at[c] = begin + lefts;
-            lefts += runs[c].lefts;
+            left_at[c] = job.begin + lefts;
+            lefts += s.chunk_lefts[c];
         }
         std::uint32_t rights = 0;
         for (std::uint32_t c = 0; c < chunks; ++c) {
-            right_at[c] = begin + lefts + rights;
-            rights += (chunk_begin(c + 1) - chunk_begin(c)) - runs[c].lefts;
+            right_at[c] = job.begin + lefts + rights;
+            rights += first[c + 1] - first[c] - s.chunk_lefts[c];
         }
+        struct Run {
+            Box4 cbox[2]; // [0]: right, [1]: left
+            bool as_binned = true;
+        };
+        std::vector<Run> runs(chunks);
+        const PrimRef* from = job.refs;
+        PrimRef* to = job.refs == m_refs.data() ? m_scratch.data() : m_refs.data();
         m_pool.for_each(chunks, [&](std::size_t c) {
-            const std::uint32_t from = chunk_begin(c);
-            const std::uint32_t to = chunk_begin(c + 1);
-            std::memcpy(refs + left_at[c], scratch + from, runs[c].lefts * sizeof(PrimRef));
-            // The right run lies reversed at the chunk's end.
-            std::uint32_t out = right_at[c];
-            for (std::uint32_t k = to; k > from + runs[c].lefts; --k) refs[out++] = scratch[k - 1];
+            Run& run = runs[c];
+            std::uint32_t at[2] = {right_at[c], left_at[c]}; // [0]: right, [1]: left
+            const std::uint32_t stop[2] = {right_at[c] + (first[c + 1] - first[c] - s.chunk_lefts[c]),
+                                           left_at[c] + s.chunk_lefts[c]};
+            for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+                Vec4 centre;
+                const int side = goes_left(s, from[k], centre) ? 1 : 0;
+                // The bins sorted each reference with this arithmetic, so a run never outgrows
+                // its place; should that ever break, the guard keeps the chunk out of its
+                // neighbours' runs.
+                if (at[side] == stop[side]) {
+                    run.as_binned = false;
+                    return;
+                }
+                run.cbox[side].grow_point(centre);
+                to[at[side]++] = from[k];
+            }
         });
         for (const Run& run : runs) {
+            if (!run.as_binned) throw std::logic_error("BVH builder: a stable partition disagrees with its bins");
             left.cbox.grow(run.cbox[1]);
             right.cbox.grow(run.cbox[0]);
         }
         left.box = s.left_box;
         right.box = s.right_box;
-        return begin + lefts;
+        left.refs = to;
+        right.refs = to;
+        return job.begin + lefts;
     }
 
     // Fallback when binning finds no split (all centroids in one bin, or the depth guard):
@@ -579,7 +621,7 @@ private:
                 axis = a;
             }
         }
-        PrimRef* refs = m_refs.data();
+        PrimRef* refs = job.refs;
         if (axis >= 0) {
             std::stable_sort(refs + job.begin, refs + job.end, [axis](const PrimRef& x, const PrimRef& y) {
                 return 0.5f * x.lo[axis] + 0.5f * x.hi[axis] < 0.5f * y.lo[axis] + 0.5f * y.hi[axis];
@@ -703,13 +745,6 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
 
     Builder builder(refs, tree, options, pool);
     builder.build_root(box, cbox);
-
-    // The leaves' triangle order, in the same chunks as the bounds pass.
-    tree.prim_indices.resize(count);
-    pool.for_each(chunks, [&](std::size_t c) {
-        const std::size_t end = std::min<std::size_t>(count, (c + 1) * kPrimChunk);
-        for (std::size_t i = c * kPrimChunk; i < end; ++i) tree.prim_indices[i] = prim_of(refs[i]);
-    });
     return tree;
 }
 
