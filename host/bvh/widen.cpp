@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,9 +33,13 @@ constexpr std::uint32_t kBlockLanes = 4;
 //     per-round ratios over two allocations): primary 1.06x, diffuse 1.06x, path 1.08x (3);
 //     device bytes per triangle 197 -> 181 -> 168.
 // On the Cornell box (36 triangles, all in L1) leaves of up to 8 cost primary and shadow
-// rays 6-9 %, hence the thresholds. Scenes between the dragon and the 5.2M one were not
-// measured: the second threshold is where the BVH8 outgrows most L3 caches. The BVH4 (CPUs
-// without 8-wide SIMD) was not measured with longer leaves and keeps one block.
+// rays 6-9 %, hence the thresholds. In between, the bench's generator at two more sizes
+// (3 rounds each):
+//   328k triangles, up to 4 / 8 / 16: primary 0.54 / 0.54 / 0.52x, diffuse 0.56 / 0.56 /
+//     0.57x, shadow 0.67 / 0.67 / 0.62x, path 6.97 / 6.92 / 6.99 M/s: flat, so 8 stays;
+//   1.31M triangles, up to 8 -> 16: primary 0.55 -> 0.57x, diffuse 0.55 -> 0.57x, shadow
+//     0.70 -> 0.71x, path 5.84 -> 6.11 M/s (higher in every round), so 16 from 2^20 on.
+// The BVH4 (CPUs without 8-wide SIMD) was not measured with longer leaves and keeps one block.
 constexpr std::uint32_t kLargeSceneTriangles = 65536;    // its BVH8 is beyond a core's L2
 constexpr std::uint32_t kLargeSceneLeafTriangles = 2 * kBlockLanes;
 constexpr std::uint32_t kHugeSceneTriangles = 1u << 20;  // ~170 MB: beyond most L3 caches
@@ -86,32 +91,66 @@ std::uint32_t leaf_blocks(const Bvh2View& view, std::uint32_t n)
     return blocks;
 }
 
-// Fills the per-node arrays bottom-up and counts inner_bound. Children always follow their
-// parent in the flat order (flatten's depth-first layout), so one backward sweep sees children
-// before parents; every entry is written.
-void compute_ranges(Bvh2View& view)
+// One node's entries of the per-node arrays, from its children's (a leaf: from itself).
+// Returns 1 if the node does not become a leaf (it counts towards inner_bound), else 0.
+std::size_t compute_node_range(Bvh2View& view, std::uint32_t node)
+{
+    const std::uint32_t first = view.first(node);
+    if (view.is_leaf(node)) {
+        view.tri_first[node] = first;
+        view.tri_end[node] = first + dev::gc_node_count(view.bvh.nodes[node]);
+    } else {
+        view.tri_first[node] = std::min(view.tri_first[first], view.tri_first[first + 1]);
+        view.tri_end[node] = std::max(view.tri_end[first], view.tri_end[first + 1]);
+    }
+    if (view.becomes_leaf(node)) {
+        view.blocks_below[node] = block_count(view, node);
+        return 0;
+    }
+    view.blocks_below[node] = view.blocks_below[first] + view.blocks_below[first + 1];
+    return 1;
+}
+
+// Subtrees whose descendants span fewer node slots than this are swept on one thread.
+constexpr std::uint32_t kSerialRangeNodes = 65536;
+
+// The entries of `node` and of its descendants, which flatten's depth-first layout puts at
+// slots [below, below_end): an inner node's pair first, then the left child's descendants,
+// then the right child's, each contiguous. Within such a range children follow their parent,
+// so a backward sweep sees children before parents; large ranges are split at the right
+// child's pair and swept on the pool. Returns the count towards inner_bound.
+std::size_t compute_ranges_below(Bvh2View& view, TaskPool* pool, std::uint32_t node, std::uint32_t below,
+                                 std::uint32_t below_end)
+{
+    std::size_t inner = 0;
+    if (view.is_leaf(node) || pool == nullptr || below_end - below < kSerialRangeNodes) {
+        for (std::uint32_t i = below_end; i-- > below;) inner += compute_node_range(view, i);
+    } else {
+        const std::uint32_t left = view.first(node);
+        const std::uint32_t right = left + 1;
+        // The right child's descendants start at its pair; a leaf has none, so the left's
+        // run to the end.
+        const std::uint32_t split = view.is_leaf(right) ? below_end : view.first(right);
+        if (left != below || split < left + 2 || split > below_end)
+            throw std::logic_error("BVH8 collapse: the BVH2 is not in depth-first order");
+        std::size_t right_inner = 0;
+        TaskGroup group;
+        pool->spawn(group, [&] { right_inner = compute_ranges_below(view, pool, right, split, below_end); });
+        inner += compute_ranges_below(view, pool, left, left + 2, split);
+        pool->wait(group);
+        inner += right_inner;
+    }
+    return inner + compute_node_range(view, node);
+}
+
+// Fills the per-node arrays bottom-up and counts inner_bound, on `pool` if there is one.
+void compute_ranges(Bvh2View& view, TaskPool* pool)
 {
     const std::size_t n = view.bvh.nodes.size();
     view.tri_first.resize(n);
     view.tri_end.resize(n);
     view.blocks_below.resize(n);
-    for (std::size_t i = n; i-- > 0;) {
-        const auto node = static_cast<std::uint32_t>(i);
-        const std::uint32_t first = view.first(node);
-        if (view.is_leaf(node)) {
-            view.tri_first[i] = first;
-            view.tri_end[i] = first + dev::gc_node_count(view.bvh.nodes[i]);
-        } else {
-            view.tri_first[i] = std::min(view.tri_first[first], view.tri_first[first + 1]);
-            view.tri_end[i] = std::max(view.tri_end[first], view.tri_end[first + 1]);
-        }
-        if (view.becomes_leaf(node)) {
-            view.blocks_below[i] = block_count(view, node);
-        } else {
-            view.blocks_below[i] = view.blocks_below[first] + view.blocks_below[first + 1];
-            ++view.inner_bound;
-        }
-    }
+    view.inner_bound = compute_ranges_below(view, pool, 0, 1, static_cast<std::uint32_t>(n));
 }
 
 dev::GcTriangle4 empty_block()
@@ -436,8 +475,13 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh, int threads)
         out.blocks.push_back(empty_block());
         return out;
     }
+    if (threads == 0) threads = host_thread_count();
+    // One pool for the range sweep and the collapse, for trees large enough to share out.
+    const std::size_t triangles = bvh.triangles.size();
+    std::optional<TaskPool> pool;
+    if (threads > 1 && triangles >= 4 * std::size_t{kMinSubtreeTriangles}) pool.emplace(threads);
     Bvh2View view{bvh, {}, {}, {}, 0, wide_leaf_triangles(Width, bvh.scene_triangle_count())};
-    compute_ranges(view);
+    compute_ranges(view, pool ? &*pool : nullptr);
     const std::size_t blocks = view.blocks_below[0];
     if (view.becomes_leaf(0)) {
         // A root that is one leaf still needs an inner root: traversal starts at node 0.
@@ -448,12 +492,9 @@ WideBvhOf<Node> widen_tree(const FlatBvh& bvh, int threads)
         widener.done();
         return out;
     }
-    if (threads == 0) threads = host_thread_count();
-    const std::size_t triangles = view.triangles(0);
-    if (threads > 1 && triangles >= 4 * std::size_t{kMinSubtreeTriangles}) {
+    if (pool) {
         const auto per_task = static_cast<std::uint32_t>(triangles / (8 * static_cast<std::size_t>(threads)));
-        TaskPool pool(threads);
-        SplicedCollapse<Node, Width>(view, std::max(kMinSubtreeTriangles, per_task)).run(pool, out);
+        SplicedCollapse<Node, Width>(view, std::max(kMinSubtreeTriangles, per_task)).run(*pool, out);
         return out;
     }
     check_reference_range(view.inner_bound + 1, blocks);
