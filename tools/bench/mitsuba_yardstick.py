@@ -41,6 +41,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "reference"))
+from colour import REC709_LUMINANCE  # noqa: E402  (tools/reference, Mitsuba-free)
 
 
 def parse_args(argv):
@@ -125,7 +126,8 @@ def luminance_mean(rgb) -> float:
     pixels = len(rgb) // 3
     if pixels == 0:
         fail("an empty image")
-    return (0.2126 * sum(rgb[0::3]) + 0.7152 * sum(rgb[1::3]) + 0.0722 * sum(rgb[2::3])) / pixels
+    wr, wg, wb = REC709_LUMINANCE
+    return (wr * sum(rgb[0::3]) + wg * sum(rgb[1::3]) + wb * sum(rgb[2::3])) / pixels
 
 
 def read_pfm(path: str):

@@ -21,16 +21,12 @@ from __future__ import annotations
 import mitsuba as mi
 import numpy as np
 
+from colour import luminance
 from obj_scene import TriangleGroup
 
 LAMBERT_ILLUM = {0, 1, 2, 10}
 MIRROR_ILLUM = {3, 5, 8}
 DIELECTRIC_ILLUM = {4, 6, 7, 9}
-
-
-def luminance(c) -> float:
-    # Rec. 709 / sRGB primaries, the renderer's working space.
-    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 
 
 def _rgb(c) -> dict:
