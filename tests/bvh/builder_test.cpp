@@ -60,6 +60,27 @@ TEST(BvhBuilder, ThreadCountDoesNotChangeALargeBvh)
     check_invariants(three, scene, 4);
 }
 
+// A large node whose chunks split very differently: a spread of triangles, then a clump of
+// coincident ones (which no split separates: they end in median splits) appended after it,
+// so that with three threads the stable partition's first chunk sends everything one way,
+// the last everything the other way and the middle one a mix. Same tree on one thread and
+// on three, every triangle in exactly one leaf.
+TEST(BvhBuilder, LopsidedLargeNodesPartitionAlike)
+{
+    Scene scene = random_soup(600000, 33, 0.005f);
+    const std::size_t spread = scene.triangle_count();
+    for (std::size_t t = 0; t < 450000; ++t)
+        add_triangle(scene, Point3(2.0f, 2.0f, 2.0f), Point3(2.001f, 2.0f, 2.0f), Point3(2.0f, 2.001f, 2.0f));
+    ASSERT_GE(scene.triangle_count(), std::size_t{1} << 20);
+    const FlatBvh one = build_bvh(scene, {.threads = 1});
+    const FlatBvh three = build_bvh(scene, {.threads = 3});
+    const BvhStats stats = bvh_stats(one);
+    std::printf("[ lopsided ] %zu triangles (%zu coincident), %zu nodes, depth %zu\n", scene.triangle_count(),
+                scene.triangle_count() - spread, one.nodes.size(), stats.max_depth);
+    ASSERT_TRUE(same_bytes(one, three));
+    check_invariants(three, scene, 4);
+}
+
 // flatten() lays out a large tree's nodes on a pool (subtrees below a cut depth sized, then
 // walked, on all threads): it must write the bytes of the one-thread walk, triangles too.
 TEST(BvhFlatten, ThreadCountDoesNotChangeTheLayout)
