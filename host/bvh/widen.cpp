@@ -132,13 +132,15 @@ std::size_t compute_ranges_below(Bvh2View& view, TaskPool* pool, std::uint32_t n
         // run to the end.
         const std::uint32_t split = view.is_leaf(right) ? below_end : view.first(right);
         if (left != below || split < left + 2 || split > below_end)
-            throw std::logic_error("BVH8 collapse: the BVH2 is not in depth-first order");
-        std::size_t right_inner = 0;
-        TaskGroup group;
-        pool->spawn(group, [&] { right_inner = compute_ranges_below(view, pool, right, split, below_end); });
-        inner += compute_ranges_below(view, pool, left, left + 2, split);
-        pool->wait(group);
-        inner += right_inner;
+            throw std::logic_error("wide BVH: the BVH2 is not in depth-first order");
+        // The right child's run as a task, the left one here; for_each waits for both before
+        // an exception leaves this frame, which the task refers to.
+        std::size_t side_inner[2] = {0, 0};
+        pool->for_each(2, [&](std::size_t side) {
+            side_inner[side] = side == 0 ? compute_ranges_below(view, pool, left, left + 2, split)
+                                         : compute_ranges_below(view, pool, right, split, below_end);
+        });
+        inner = side_inner[0] + side_inner[1];
     }
     return inner + compute_node_range(view, node);
 }

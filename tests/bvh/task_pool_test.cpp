@@ -120,5 +120,24 @@ TEST(TaskPool, FailuresReachTheCaller)
     EXPECT_EQ(ran.load(), 100);
 }
 
+// The builder and the collapse fork with for_each(2, ...) because of this: when the caller's
+// own share throws, the other tasks, which refer to the caller's frame, have finished before
+// the exception leaves for_each.
+TEST(TaskPool, ForEachWaitsForItsTasksBeforeRethrowing)
+{
+    TaskPool pool(2);
+    std::atomic<bool> task_done{false};
+    try {
+        pool.for_each(2, [&](std::size_t i) {
+            if (i == 0) throw std::runtime_error("the caller's share");
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            task_done = true;
+        });
+        FAIL() << "expected the caller's exception";
+    } catch (const std::runtime_error&) {
+        EXPECT_TRUE(task_done.load()) << "for_each let the exception out while its task still ran";
+    }
+}
+
 }  // namespace
 }  // namespace gc::test
