@@ -1,27 +1,36 @@
 #!/usr/bin/env bash
-# A/B of two kernel trees with one geocold-bench binary: the kernels are read at run time
-# (GEOCOLD_KERNEL_DIR), so a change to kernels/ can be measured against the previous
-# version without a second build, in interleaved rounds (A B A B ...) so that a machine
-# whose speed drifts affects both alike. Prints every round, then per figure the median of
-# A, the median of B and the median of the per-round ratios B/A.
+# A/B of two kernel trees, or of two geocold-bench builds, in interleaved rounds (A B A B ...)
+# so that a machine whose speed drifts affects both alike. Kernels are read at run time
+# (GEOCOLD_KERNEL_DIR), so a change to kernels/ is measured with one binary and no second
+# build; a change to host code (the BVH builder, the collapse) needs a bench built from each
+# revision. Prints every round, then per figure the median of A, the median of B and the
+# median of the per-round ratios B/A. Figures: each ray and path line of the bench, and the
+# tree and CPU-start speeds against Embree.
 #
-# Usage: tools/bench/kernel-ab.sh DIR_A DIR_B [ROUNDS] [geocold-bench args...]
-#   DIR_A, DIR_B   kernel trees (each with *.cl and shared/), e.g. from
-#                  `git archive HEAD~1 kernels | tar -x -C /tmp/a` -> /tmp/a/kernels
-#   ROUNDS         interleaved rounds (default 3)
-#   bench args     default: --device cpu --scene cornell,dragon --no-first-image --repeats 3
-# GEOCOLD_BENCH (default: build/release/geocold-bench, else build/bare/geocold-bench) picks
-# the binary; other environment (GEOCOLD_KERNEL_FEATURES, GEOCOLD_BVH_WIDTH...) passes through.
+# Usage: tools/bench/kernel-ab.sh SIDE_A SIDE_B [ROUNDS] [geocold-bench args...]
+#   SIDE_A, SIDE_B  each a kernel tree (with *.cl and shared/), e.g. from
+#                   `git archive HEAD~1 kernels | tar -x -C /tmp/a` -> /tmp/a/kernels,
+#                   or a geocold-bench executable (it reads its own tree's kernels). For
+#                   the GPU node: `git archive BASE | tar -x -C .deps/base` here, carry .deps,
+#                   and there `ln -s "$PWD/.deps" .deps/base/.deps`, build both trees with
+#                   GEOCOLD_CMAKE_ARGS=-DGEOCOLD_BUILD_BENCH=ON tools/device/build-and-test.sh
+#                   (in each), then pass .deps/base/build/bare/geocold-bench build/bare/geocold-bench
+#   ROUNDS          interleaved rounds (default 3)
+#   bench args      default: --device cpu --scene cornell,dragon --no-first-image --repeats 3
+# GEOCOLD_BENCH (default: build/release/geocold-bench, else build/bare/geocold-bench) is the
+# binary for kernel-tree sides; other environment (GEOCOLD_KERNEL_FEATURES,
+# GEOCOLD_BVH_WIDTH...) passes through.
 set -euo pipefail
-[ $# -ge 2 ] || { sed -n '2,14p' "$0" >&2; exit 2; }
-dir_a=$1
-dir_b=$2
+[ $# -ge 2 ] || { sed -n '2,23p' "$0" >&2; exit 2; }
+side_a=$1
+side_b=$2
 shift 2
 rounds=3
 if [ $# -gt 0 ] && [[ $1 =~ ^[0-9]+$ ]]; then rounds=$1; shift; fi
 [ $# -gt 0 ] || set -- --device cpu --scene cornell,dragon --no-first-image --repeats 3
-for d in "$dir_a" "$dir_b"; do
-    [ -d "$d/shared" ] || { echo "kernel-ab: $d is not a kernel tree (no shared/ in it)" >&2; exit 2; }
+for d in "$side_a" "$side_b"; do
+    [ -d "$d/shared" ] || { [ -f "$d" ] && [ -x "$d" ]; } ||
+        { echo "kernel-ab: $d is neither a kernel tree (no shared/ in it) nor an executable" >&2; exit 2; }
 done
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bench=${GEOCOLD_BENCH:-}
@@ -30,7 +39,9 @@ if [ -z "$bench" ]; then
         if [ -x "$b" ]; then bench=$b; break; fi
     done
 fi
-[ -n "$bench" ] && [ -x "$bench" ] || { echo "kernel-ab: no geocold-bench (set GEOCOLD_BENCH)" >&2; exit 2; }
+if [ -d "$side_a" ] || [ -d "$side_b" ]; then
+    [ -n "$bench" ] && [ -x "$bench" ] || { echo "kernel-ab: no geocold-bench (set GEOCOLD_BENCH)" >&2; exit 2; }
+fi
 
 # One run's figures as "name=value" words: each ray and path line of the bench, named by
 # scene, device index and kind (e.g. cornell/0/diffuse, dragon/0/path).
@@ -43,16 +54,22 @@ figures() {
              for (i = 1; i <= NF; i++) if ($(i+1) == "Mrays/s") { print scene "/" dev "/" kind "=" $i; break } }
          /^ *path \[[0-9]+\]/{
              dev=$2; gsub(/[\[\]]/, "", dev)
-             for (i = 1; i <= NF; i++) if ($(i+1) == "Msamples/s") { print scene "/" dev "/path=" $i; break } }'
+             for (i = 1; i <= NF; i++) if ($(i+1) == "Msamples/s") { print scene "/" dev "/path=" $i; break } }
+         /ours\/Embree: speed/{ for (i = 1; i <= NF; i++) if ($i == "speed") { v = $(i+1); sub("x", "", v); print scene "/tree=" v; break } }
+         /CPU start:.*speed/{ for (i = 1; i <= NF; i++) if ($i == "speed") { v = $(i+1); sub("x", "", v); print scene "/start=" v; break } }'
 }
 
 results=$(mktemp)
 trap 'rm -f "$results"' EXIT
 for ((r = 1; r <= rounds; r++)); do
     for side in A B; do
-        dir=$dir_a
-        [ $side = B ] && dir=$dir_b
-        line=$(GEOCOLD_KERNEL_DIR=$dir "$bench" "$@" 2>&1 | figures | tr '\n' ' ')
+        spec=$side_a
+        [ $side = B ] && spec=$side_b
+        if [ -d "$spec" ]; then
+            line=$(GEOCOLD_KERNEL_DIR=$spec "$bench" "$@" 2>&1 | figures | tr '\n' ' ')
+        else
+            line=$("$spec" "$@" 2>&1 | figures | tr '\n' ' ')
+        fi
         echo "round $r $side: $line"
         for f in $line; do echo "$r $side ${f%%=*} ${f#*=}" >> "$results"; done
     done
