@@ -549,21 +549,18 @@ private:
     {
         const std::uint32_t n = job.end - job.begin;
         const auto chunks = static_cast<std::uint32_t>(s.chunk_lefts.size());
-        // Per chunk: its first triangle, and where its left and its right run go.
+        // Per chunk c: its first triangle first[c], and where its left and its right run
+        // begin, left_at[c] and right_at[c]. Prefix sums, so a run ends where the next
+        // chunk's begins, and entry [chunks] is the end of each side.
         std::vector<std::uint32_t> first(chunks + 1);
-        std::vector<std::uint32_t> left_at(chunks);
-        std::vector<std::uint32_t> right_at(chunks);
+        std::vector<std::uint32_t> left_at(chunks + 1);
+        std::vector<std::uint32_t> right_at(chunks + 1);
         for (std::uint32_t c = 0; c <= chunks; ++c) first[c] = chunk_begin(job.begin, n, c, chunks);
-        std::uint32_t lefts = 0;
-        for (std::uint32_t c = 0; c < chunks; ++c) {
-            left_at[c] = job.begin + lefts;
-            lefts += s.chunk_lefts[c];
-        }
-        std::uint32_t rights = 0;
-        for (std::uint32_t c = 0; c < chunks; ++c) {
-            right_at[c] = job.begin + lefts + rights;
-            rights += first[c + 1] - first[c] - s.chunk_lefts[c];
-        }
+        left_at[0] = job.begin;
+        for (std::uint32_t c = 0; c < chunks; ++c) left_at[c + 1] = left_at[c] + s.chunk_lefts[c];
+        right_at[0] = left_at[chunks];
+        for (std::uint32_t c = 0; c < chunks; ++c)
+            right_at[c + 1] = right_at[c] + (first[c + 1] - first[c] - s.chunk_lefts[c]);
         struct Run {
             Box4 cbox[2]; // [0]: right, [1]: left
             bool as_binned = true;
@@ -574,8 +571,7 @@ private:
         m_pool.for_each(chunks, [&](std::size_t c) {
             Run& run = runs[c];
             std::uint32_t at[2] = {right_at[c], left_at[c]}; // [0]: right, [1]: left
-            const std::uint32_t stop[2] = {right_at[c] + (first[c + 1] - first[c] - s.chunk_lefts[c]),
-                                           left_at[c] + s.chunk_lefts[c]};
+            const std::uint32_t stop[2] = {right_at[c + 1], left_at[c + 1]};
             for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
                 Vec4 centre;
                 const int side = goes_left(s, from[k], centre) ? 1 : 0;
@@ -599,7 +595,7 @@ private:
         right.box = s.right_box;
         left.refs = to;
         right.refs = to;
-        return job.begin + lefts;
+        return left_at[chunks];
     }
 
     // Fallback when binning finds no split (all centroids in one bin, or the depth guard):
