@@ -25,6 +25,9 @@ struct RenderSettings {
     glm::vec3 env_radiance{0.0f};      // constant environment, or the scale of env_map_path
     std::string env_map_path;          // lat-long environment map (.exr/.hdr/.pfm); empty = none
     std::uint32_t wavefront_size = 0;  // paths in flight per pass; 0 = chosen for the device
+    // Path integrator: at most this many samples per pixel in one pass; 0 = chosen by the
+    // renderer (host/render/pass_planner.h on CPUs, as many as the wavefront holds on GPUs).
+    std::uint32_t samples_per_pass = 0;
 };
 
 inline const char* integrator_name(IntegratorKind k)

@@ -1,6 +1,7 @@
 #include "host/render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -67,7 +68,8 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
                                                                 : load_environment_map(settings.env_map_path))),
       m_megakernel(settings.integrator == IntegratorKind::Path && path_megakernel_for(context.device())),
       m_program(context, integrator_program(settings.integrator, m_megakernel),
-                program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features))
+                program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features)),
+      m_planner(settings.samples_per_pass)
 {
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
@@ -119,13 +121,21 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
 std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
 {
     const std::uint32_t pixels = m_params.width * m_params.height;
-    // An image smaller than the wavefront would leave most of a GPU idle and pay the ~30
-    // launches of a pass for few paths: the path integrator then traces several samples of
-    // every pixel in one pass (accumulate.cl keeps the per-pixel sums in sample order, so the
-    // image is the same bits as one sample per pass).
+    // The path integrator traces several samples of every pixel in one pass where that pays.
+    // On a GPU, an image smaller than the wavefront would leave most of it idle and pay the ~30
+    // launches of a pass for few paths, so the wavefront is filled with samples. On a CPU, a
+    // megakernel work-item runs its pixel's samples back to back, which keeps that pixel's part
+    // of the scene in the core's caches; the planner sizes the pass (pass_planner.h).
+    // accumulate.cl and the megakernel add each pixel's samples in sample order, so the image
+    // is the same bits as one sample per pass.
     std::uint32_t samples = 1;
-    if (m_settings.integrator == IntegratorKind::Path && pixels <= m_batch)
+    if (m_megakernel) {
+        samples = m_planner.next(max_samples);
+    } else if (m_settings.integrator == IntegratorKind::Path && pixels <= m_batch) {
         samples = std::max(1u, std::min(max_samples, m_path_capacity / pixels));
+        if (m_settings.samples_per_pass != 0) samples = std::min(samples, m_settings.samples_per_pass);
+    }
+    const auto start = std::chrono::steady_clock::now();
     m_params.sample_index = m_samples;
     m_params.samples_in_pass = samples;
     for (std::uint32_t offset = 0; offset < pixels; offset += m_batch) {
@@ -137,6 +147,8 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
         else run_path_batch();
     }
     m_context.finish();
+    if (m_megakernel)
+        m_planner.record(samples, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     m_samples += samples;
     return samples;
 }

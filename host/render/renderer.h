@@ -15,6 +15,7 @@
 #include "host/cl/program.h"
 #include "host/image/film.h"
 #include "host/render/device_scene.h"
+#include "host/render/pass_planner.h"
 #include "host/render/render_settings.h"
 #include "host/scene/scene.h"
 
@@ -30,9 +31,13 @@ public:
     void render_sample() { render_samples(1); }
 
     // Adds between 1 and max_samples samples to every pixel and returns how many: the path
-    // integrator fills its wavefront with several samples per pixel when the image is smaller
-    // than it. The image after n samples is the same bits however they were grouped.
+    // integrator traces several samples per pixel in one pass, on GPUs when the image is
+    // smaller than the wavefront, on CPUs as many as fill about half a second (PassPlanner).
+    // The image after n samples is the same bits however they were grouped.
     std::uint32_t render_samples(std::uint32_t max_samples);
+
+    // Whether the passes have reached their steady size (benchmarks time from there on).
+    bool passes_settled() const { return !m_megakernel || m_planner.settled(); }
 
     std::uint32_t samples_done() const { return m_samples; }
     std::uint32_t wavefront_size() const { return m_batch; }
@@ -61,6 +66,7 @@ private:
     std::uint32_t m_batch = 0;          // pixels per pass
     std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
     std::uint32_t m_samples = 0;
+    PassPlanner m_planner;              // samples per pass of the megakernel
 
     cl::Buffer<glm::vec4> m_film;
     cl::Buffer<glm::vec4> m_film_squares;

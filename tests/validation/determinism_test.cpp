@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "host/scene/load.h"
 #include "tests/cl/cl_test_util.h"
@@ -56,24 +58,17 @@ TEST_F(DeterminismTest, SameRenderTwiceIsBitIdentical)
     EXPECT_FALSE(bit_identical(a.mean, other.mean));
 }
 
-TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
+// Renders s.spp samples through render_samples (grouped as the renderer plans them) and
+// checks the films against one sample per pass; returns the samples of each pass.
+std::vector<std::uint32_t> expect_grouping_keeps_bits(const cl::Context& context, const Scene& scene,
+                                                      const Camera& camera, const RenderSettings& s)
 {
-    // A small image fills the wavefront with several samples per pixel (Renderer::
-    // render_samples); accumulate.cl sums them in sample order, so the films must equal
-    // one-sample-per-pass rendering bit for bit, whatever the grouping.
-    const Scene scene = load_cornell("CornellBox-Sphere.obj");
-    const Camera camera = validation::cornell_camera();
-    RenderSettings s;
-    s.integrator = IntegratorKind::Path;
-    s.width = 40;
-    s.height = 30;
-    s.spp = 11;
-    s.seed = 5;
-    s.wavefront_size = 4000;  // 3 samples of the 1200 pixels per pass: passes of 3, 3, 3, 2
-    const validation::Rendered single = validation::render(*context, scene, camera, s);
+    RenderSettings one_per_pass = s;
+    one_per_pass.samples_per_pass = 1;
+    const validation::Rendered single = validation::render(context, scene, camera, one_per_pass);
 
     const FlatBvh bvh = build_bvh(scene);
-    Renderer grouped(*context, scene, bvh, camera, s);
+    Renderer grouped(context, scene, bvh, camera, s);
     std::vector<std::uint32_t> passes;
     while (grouped.samples_done() < s.spp) passes.push_back(grouped.render_samples(s.spp - grouped.samples_done()));
     std::string shown;
@@ -83,11 +78,57 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     }
     const bool mean_same = bit_identical(single.mean, grouped.film());
     const bool variance_same = bit_identical(single.variance, grouped.variance());
-    std::printf("samples per pass:%s; mean films %s, variance films %s\n", shown.c_str(),
+    std::printf("%s, %u pixels per launch: samples per pass:%s; mean films %s, variance films %s\n",
+                grouped.uses_megakernel() ? "megakernel" : "wavefront", grouped.wavefront_size(), shown.c_str(),
                 mean_same ? "identical" : "DIFFER", variance_same ? "identical" : "DIFFER");
-    EXPECT_EQ(passes.size(), 4u);
     EXPECT_TRUE(mean_same);
     EXPECT_TRUE(variance_same);
+    return passes;
+}
+
+TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
+{
+    // Several samples per pixel in one pass (Renderer::render_samples): accumulate.cl and the
+    // megakernel add them in sample order, so the films must equal one-sample-per-pass
+    // rendering bit for bit, whatever the grouping.
+    const Scene scene = load_cornell("CornellBox-Sphere.obj");
+    const Camera camera = validation::cornell_camera();
+    RenderSettings s;
+    s.integrator = IntegratorKind::Path;
+    s.width = 40;
+    s.height = 30;
+    s.spp = 11;
+    s.seed = 5;
+    s.wavefront_size = 4000;  // a GPU's wavefront holds 3 samples of the 1200 pixels
+    s.samples_per_pass = 3;   // and a CPU is told 3: passes of 3, 3, 3, 2 either way
+    const std::vector<std::uint32_t> passes = expect_grouping_keeps_bits(*context, scene, camera, s);
+    EXPECT_EQ(passes, (std::vector<std::uint32_t>{3, 3, 3, 2}));
+}
+
+TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)
+{
+    // The CPU form with an image larger than one launch: each launch's work-items run their
+    // pixels' 4 samples back to back, batch after batch. Left to the planner too (its passes
+    // grow from 1 by at most doubling), the grouping must not change a bit.
+    ::setenv("GEOCOLD_PATH_KERNEL", "megakernel", 1);
+    const Scene scene = load_cornell("CornellBox-Sphere.obj");
+    const Camera camera = validation::cornell_camera();
+    RenderSettings s;
+    s.integrator = IntegratorKind::Path;
+    s.width = 40;
+    s.height = 30;
+    s.spp = 10;
+    s.seed = 3;
+    s.wavefront_size = 500;  // launches of 500, 500 and 200 pixels
+    s.samples_per_pass = 4;
+    const std::vector<std::uint32_t> fixed = expect_grouping_keeps_bits(*context, scene, camera, s);
+    EXPECT_EQ(fixed, (std::vector<std::uint32_t>{4, 4, 2}));
+    s.samples_per_pass = 0;
+    const std::vector<std::uint32_t> planned = expect_grouping_keeps_bits(*context, scene, camera, s);
+    ::unsetenv("GEOCOLD_PATH_KERNEL");
+    ASSERT_FALSE(planned.empty());
+    EXPECT_EQ(planned.front(), 1u);
+    for (std::size_t i = 1; i < planned.size(); ++i) EXPECT_LE(planned[i], 2 * planned[i - 1]);
 }
 
 TEST_F(DeterminismTest, MegakernelEqualsWavefront)

@@ -4,7 +4,7 @@
 //
 //   geocold-bench [--device all|SPEC] [--scene cornell,bunny,dragon,large] [--quick] [--json]
 //                 [--repeats N] [--rays SIDE] [--no-path] [--no-rays] [--no-first-image]
-//                 [--no-packet-probe] [--threads N]
+//                 [--no-packet-probe] [--threads N] [--wavefront N] [--samples-per-pass N]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,6 +26,7 @@
 #include "host/bvh/widen.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
+#include "host/render/pass_planner.h"
 #include "host/util/error.h"
 #include "host/util/host_threads.h"
 #include "tools/bench/bench_scenes.h"
@@ -66,6 +67,8 @@ struct Options {
     bool rays = true;
     bool first_image = true;
     int threads = 0;                // --threads: 0 = every core
+    int wavefront = 0;              // --wavefront: paths in flight per pass, 0 = the renderer's default
+    int samples_per_pass = 0;       // --samples-per-pass: a fixed count, 0 = the renderer's plan
     std::string first_image_child; // the device key (device_key()) in the child process
     bool list_device_keys = false;  // child: print "<label>\t<key>" per selected device
 };
@@ -109,18 +112,24 @@ Options parse(int argc, char** argv)
         else if (a == "--no-first-image") o.first_image = false;
         else if (a == "--no-packet-probe") o.packet_probe = false;
         else if (a == "--threads") o.threads = integer(i, 1, 4096);
+        else if (a == "--wavefront") o.wavefront = integer(i, 1, 1 << 24);
+        else if (a == "--samples-per-pass") o.samples_per_pass = integer(i, 0, 1 << 16);
         else if (a == "--first-image-child") o.first_image_child = value(i);
         else if (a == "--list-device-keys") o.list_device_keys = true;
         else if (a == "--help" || a == "-h") {
             std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
                         "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
                         "                     [--no-rays] [--no-first-image] [--no-packet-probe] [--threads N]\n"
+                        "                     [--wavefront N] [--samples-per-pass N]\n"
                         "--threads N caps every CPU thread of the run: PoCL's workers, Embree's and the host's\n"
                         "(default: every core). With --threads 1 the per-core figure is one thread's, the\n"
                         "conditions of the Mitsuba llvm_ad_rgb anchor.\n"
                         "--json puts each scene's view in the document too; tools/bench/mitsuba_yardstick.py\n"
                         "reads it to time Mitsuba 3 on the same view in the same run (the anchors are fixed\n"
-                        "figures from another day).\n");
+                        "figures from another day).\n"
+                        "--wavefront N and --samples-per-pass N (0: the default) fix what the renderer otherwise\n"
+                        "chooses per device: paths in flight per pass, and samples per pixel in one pass (a CPU\n"
+                        "plans these to fill about half a second, up to 16: host/render/pass_planner.h).\n");
             std::exit(0);
         } else {
             throw UsageError("unknown option '" + a + "' (see --help)");
@@ -425,8 +434,12 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
         settings.max_depth = kPathMaxDepth;
         settings.rr_depth = kPathRrDepth;
         settings.env_radiance = s.env;
+        settings.wavefront_size = static_cast<std::uint32_t>(o.wavefront);
+        settings.samples_per_pass = static_cast<std::uint32_t>(o.samples_per_pass);
         for (DeviceSlot& d : devices) {
-            const int samples = o.quick ? 1 : (d.info.is_gpu ? 64 : o.repeats);
+            // A CPU times --repeats passes of its steady size (up to PassPlanner::kMaxSamples).
+            const int samples =
+                o.quick ? 1 : (d.info.is_gpu ? 64 : o.repeats * static_cast<int>(PassPlanner::kMaxSamples));
             const double budget = o.quick ? 0.0 : (d.info.is_gpu ? 5.0 : 20.0);
             // The renderer sizes its path slots for spp: small images then trace several
             // samples per pass on a wide device, as geocold-cl does.
@@ -436,6 +449,7 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
             json& j = out["path"][d.label()];
             j = {{"width", settings.width}, {"height", settings.height}, {"samples_per_s", sps},
                  {"samples_timed", pf.sample_seconds.size()}, {"wavefront", pf.wavefront},
+                 {"samples_per_pass", pf.samples_per_pass},
                  {"form", pf.megakernel ? "megakernel" : "wavefront"},
                  {"device_bytes", pf.scene_bytes}, {"device_bytes_per_triangle", pf.scene_bytes / double(std::max<std::size_t>(tris, 1))}};
             std::string anchor;
@@ -458,9 +472,10 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
                 anchor = "; " + ratio(sps, mitsuba) + " the issue's Mitsuba cuda_ad_rgb anchor on an H200 (" +
                          std::to_string(int(mitsuba / 1e6)) + " M)";
             }
-            say("  path %s: %dx%d depth %d, %.4f Msamples/s (median of %zu), %s %u, %.1f device bytes/triangle%s\n",
+            say("  path %s: %dx%d depth %d, %.4f Msamples/s (median of %zu), %s %u x %u samples per pass, %.1f device "
+                "bytes/triangle%s\n",
                 d.label().c_str(), settings.width, settings.height, kPathMaxDepth, sps / 1e6, pf.sample_seconds.size(),
-                pf.megakernel ? "megakernel, pixels per pass" : "wavefront", pf.wavefront,
+                pf.megakernel ? "megakernel, pixels" : "wavefront, pixels", pf.wavefront, pf.samples_per_pass,
                 pf.scene_bytes / double(std::max<std::size_t>(tris, 1)), anchor.c_str());
             if (s.name == "cornell" || s.name == "tiny") summary["cornell_path"][d.info.is_gpu ? "gpu" : "cpu"] = sps;
         }

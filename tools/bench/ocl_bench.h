@@ -50,10 +50,12 @@ struct PathFigures {
     double pixels = 0.0;
     double scene_bytes = 0.0;           // DeviceScene::bytes()
     std::uint32_t wavefront = 0;  // pixels per pass
+    std::uint32_t samples_per_pass = 0; // of the last timed pass
     bool megakernel = false;      // the path integrator ran as megakernel.cl (CPUs), else wavefront.cl
 };
-// Path-traces `settings` (one warm-up sample, then up to max_samples timed samples, stopping
-// early once budget_seconds have passed).
+// Path-traces `settings`: one warm-up sample, warm-up passes until the renderer's passes have
+// their steady size (a CPU's PassPlanner grows them over the first few), then up to
+// max_samples timed samples, stopping early once budget_seconds have passed.
 PathFigures path_samples(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
                          const RenderSettings& settings, int max_samples, double budget_seconds);
 
