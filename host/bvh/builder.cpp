@@ -658,9 +658,25 @@ void check_options(const BvhBuildOptions& o)
     if (o.threads < 0) fail("threads = " + std::to_string(o.threads) + " must be >= 0 (0: all cores)");
 }
 
-std::string scene_name(const Scene& scene)
+std::string scene_name(const Scene& scene) { return scene.name_for_messages(); }
+
+// The arrays that flatten and the device upload index per triangle, as a Scene made in code
+// (not by a loader) might lack them: sizes only here; flatten checks each material index.
+void check_per_triangle_arrays(const Scene& scene)
 {
-    return scene.source_path.empty() ? std::string("<scene built in memory>") : scene.source_path;
+    const std::size_t count = scene.triangle_count();
+    auto expect = [&](const char* what, std::size_t size, std::size_t wanted, bool may_be_empty) {
+        if (size != wanted && !(may_be_empty && size == 0))
+            throw InputError(scene_name(scene) + ": scene has " + std::to_string(count) + " triangles but " +
+                             std::to_string(size) + " " + what + " (expected " + std::to_string(wanted) +
+                             (may_be_empty ? ", or none)" : ")"));
+    };
+    expect("vertex normals", scene.normals.size(), 3 * count, false);
+    expect("texture coordinates", scene.uvs.size(), 3 * count, true);
+    expect("tangents", scene.tangents.size(), 3 * count, true);
+    expect("vertex-normal flags", scene.has_vertex_normals.size(), count, true);
+    if (count > 0 && scene.materials.empty())
+        throw InputError(scene_name(scene) + ": scene has " + std::to_string(count) + " triangles but no materials");
 }
 
 // One chunk of the bounds pass: references for triangles [begin, end), their joint bounds,
@@ -707,6 +723,7 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
     if (scene.positions.size() != 3 * count)
         throw InputError(scene_name(scene) + ": scene has " + std::to_string(count) + " triangles but " +
                          std::to_string(scene.positions.size()) + " vertex positions (expected 3 per triangle)");
+    check_per_triangle_arrays(scene);
     // Node indices are 32-bit and a tree has up to 2n - 1 nodes.
     if (count >= (std::size_t{1} << 31))
         throw InputError(scene_name(scene) + ": " + std::to_string(count) +

@@ -11,6 +11,7 @@
 
 #include "gc_accessors.h"
 #include "host/bvh/task_pool.h"
+#include "host/util/error.h"
 #include "host/util/host_threads.h"
 
 namespace gc {
@@ -203,7 +204,13 @@ BigArray<dev::GcBvhNode> flatten_nodes(const BvhTree& tree, TaskPool* pool)
 
 bool triangle_alpha_tested(const Scene& scene, std::size_t tri)
 {
-    const Material& m = scene.materials[scene.material_ids[tri]];
+    // Loaders only write valid indices, but a Scene made in code may not: this is the first
+    // read of a triangle's material on the way to the device, so it is checked here.
+    const std::uint32_t id = scene.material_ids[tri];
+    if (id >= scene.materials.size())
+        throw InputError(scene.name_for_messages() + ": triangle " + std::to_string(tri) + " has material " +
+                         std::to_string(id) + ", but the scene has " + std::to_string(scene.materials.size()));
+    const Material& m = scene.materials[id];
     return m.alpha_mode == AlphaMode::Mask && (m.albedo_texture >= 0 || !(m.opacity >= m.alpha_cutoff));
 }
 

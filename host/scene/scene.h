@@ -88,6 +88,11 @@ struct Scene {
 
     std::string source_path;                    // the file it came from, for messages
 
+    // What error messages call the scene: its file, or a note that it has none.
+    std::string name_for_messages() const
+    {
+        return source_path.empty() ? std::string("<scene built in memory>") : source_path;
+    }
     std::size_t triangle_count() const { return material_ids.size(); }
     Point3 vertex(std::size_t tri, int corner) const { return positions[3 * tri + corner]; }
 

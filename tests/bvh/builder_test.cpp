@@ -131,6 +131,38 @@ TEST(BvhBuilder, RejectsNonFiniteVerticesNamingTheTriangle)
     EXPECT_THROW(build_bvh(bad), InputError);
 }
 
+// A Scene made in code, not by a loader, may lack what flatten and the device upload index
+// per triangle; it gets an InputError naming it, not an out-of-bounds read.
+TEST(BvhBuilder, RejectsScenesWithoutTheirPerTriangleArrays)
+{
+    auto expect_error = [](const Scene& scene, const char* wanted) {
+        try {
+            build_bvh(scene);
+            ADD_FAILURE() << "expected InputError mentioning '" << wanted << "'";
+        } catch (const InputError& e) {
+            const std::string msg = e.what();
+            std::printf("[ message ] %s\n", msg.c_str());
+            EXPECT_NE(msg.find(wanted), std::string::npos);
+        }
+    };
+    Scene no_materials = random_soup(10, 27);
+    no_materials.materials.clear();
+    expect_error(no_materials, "no materials");
+    Scene no_normals = random_soup(10, 28);
+    no_normals.normals.clear();
+    expect_error(no_normals, "vertex normals");
+    Scene short_uvs = random_soup(10, 29);
+    short_uvs.uvs.assign(3, glm::vec2(0.0f));
+    expect_error(short_uvs, "texture coordinates");
+    // A material index past the end, on one thread and in flatten's parallel chunks.
+    for (std::size_t n : {std::size_t{10}, std::size_t{40000}}) {
+        Scene bad_id = random_soup(n, 30);
+        bad_id.source_path = "made.obj";
+        bad_id.material_ids[n - 3] = 1;
+        expect_error(bad_id, ("made.obj: triangle " + std::to_string(n - 3) + " has material 1").c_str());
+    }
+}
+
 TEST(BvhBuilder, LeafSizeOptionIsHonoured)
 {
     const Scene scene = random_soup(20000, 26);
