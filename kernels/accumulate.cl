@@ -16,7 +16,7 @@ __kernel void accumulate(const GcRenderParams params,
     float4 sum = film[pixel];
     float4 squares = film_squares[pixel];
     for (uint s = 0u; s < params.samples_in_pass; ++s) {
-        const float3 sample = gc_film_value(paths[s * params.pixel_count + slot].radiance.xyz);
+        const float3 sample = gc_film_value(paths[slot * params.samples_in_pass + s].radiance.xyz);
         sum += (float4)(sample, 1.0f);
         squares += (float4)(sample * sample, 0.0f);
     }

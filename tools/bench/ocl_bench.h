@@ -50,7 +50,7 @@ struct PathFigures {
     double pixels = 0.0;
     double scene_bytes = 0.0;           // DeviceScene::bytes()
     std::uint32_t wavefront = 0;  // pixels per pass
-    std::uint32_t samples_per_pass = 0; // of the last timed pass
+    std::uint32_t samples_per_pass = 0; // of the largest timed pass (the last may be cut short)
     bool megakernel = false;      // the path integrator ran as megakernel.cl (CPUs), else wavefront.cl
 };
 // Path-traces `settings`: one warm-up sample, warm-up passes until the renderer's passes have
