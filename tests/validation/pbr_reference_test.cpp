@@ -53,6 +53,7 @@ class PbrReferenceTest : public cl::test::DeviceTest, public ::testing::WithPara
 
 TEST_P(PbrReferenceTest, MatchesMitsubaPrincipled)
 {
+    GC_SKIP_WITHOUT_EXR_READER();
     const PbrCase c = GetParam();
     const fs::path json_path = fs::path(GC_TEST_SOURCE_DIR) / "tests/data/refs" / (std::string(c.name) + ".json");
     std::ifstream in(json_path);

@@ -187,6 +187,7 @@ class ReferenceTest : public cl::test::DeviceTest, public ::testing::WithParamIn
 
 TEST_P(ReferenceTest, MatchesMitsubaWithinNoise)
 {
+    GC_SKIP_WITHOUT_EXR_READER();
     const RefCase c = GetParam();
     const fs::path json = reference_json(c.name);
     ASSERT_TRUE(fs::exists(json)) << json;
@@ -225,6 +226,7 @@ TEST_P(ReferenceTest, MatchesMitsubaWithinNoise)
 // passing the Z-test; a 4% change is only just caught (mean z ~5), so that is the resolution.
 TEST_F(ReferenceTest, DetectsATenPercentAlbedoChange)
 {
+    GC_SKIP_WITHOUT_EXR_READER();
     Reference ref = read_reference(reference_json("cornell-original"));
     ASSERT_TRUE(fs::exists(ref.scene)) << ref.scene;
     ref.settings.spp = 128;
