@@ -58,6 +58,18 @@ TEST_F(DeterminismTest, SameRenderTwiceIsBitIdentical)
     EXPECT_FALSE(bit_identical(a.mean, other.mean));
 }
 
+// A 40x30 path render, small enough to run every grouping on every device.
+RenderSettings small_path_render(std::uint32_t spp, std::uint32_t seed)
+{
+    RenderSettings s;
+    s.integrator = IntegratorKind::Path;
+    s.width = 40;
+    s.height = 30;
+    s.spp = spp;
+    s.seed = seed;
+    return s;
+}
+
 // Renders s.spp samples through render_samples (grouped as the renderer plans them) and
 // checks the films against one sample per pass; returns the samples of each pass.
 std::vector<std::uint32_t> expect_grouping_keeps_bits(const cl::Context& context, const Scene& scene,
@@ -93,20 +105,14 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     // rendering bit for bit, whatever the grouping.
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
     const Camera camera = validation::cornell_camera();
-    RenderSettings s;
-    s.integrator = IntegratorKind::Path;
-    s.width = 40;
-    s.height = 30;
-    s.spp = 11;
-    s.seed = 5;
+    RenderSettings s = small_path_render(11, 5);
     s.wavefront_size = 4000;  // the wavefront holds 3 samples of the 1200 pixels
     s.samples_per_pass = 3;   // and the megakernel is told 3: passes of 3, 3, 3, 2 either way
     for (const char* form : {"wavefront", "megakernel"}) {
-        ::setenv("GEOCOLD_PATH_KERNEL", form, 1);
+        const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", form);
         const std::vector<std::uint32_t> passes = expect_grouping_keeps_bits(*context, scene, camera, s);
         EXPECT_EQ(passes, (std::vector<std::uint32_t>{3, 3, 3, 2})) << form;
     }
-    ::unsetenv("GEOCOLD_PATH_KERNEL");
 }
 
 TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)
@@ -114,22 +120,16 @@ TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)
     // The CPU form with an image larger than one launch: each launch's work-items run their
     // pixels' 4 samples back to back, batch after batch. Left to the planner too (its passes
     // grow from 1 by at most doubling), the grouping must not change a bit.
-    ::setenv("GEOCOLD_PATH_KERNEL", "megakernel", 1);
+    const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", "megakernel");
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
     const Camera camera = validation::cornell_camera();
-    RenderSettings s;
-    s.integrator = IntegratorKind::Path;
-    s.width = 40;
-    s.height = 30;
-    s.spp = 10;
-    s.seed = 3;
+    RenderSettings s = small_path_render(10, 3);
     s.wavefront_size = 500;  // launches of 500, 500 and 200 pixels
     s.samples_per_pass = 4;
     const std::vector<std::uint32_t> fixed = expect_grouping_keeps_bits(*context, scene, camera, s);
     EXPECT_EQ(fixed, (std::vector<std::uint32_t>{4, 4, 2}));
     s.samples_per_pass = 0;
     const std::vector<std::uint32_t> planned = expect_grouping_keeps_bits(*context, scene, camera, s);
-    ::unsetenv("GEOCOLD_PATH_KERNEL");
     ASSERT_FALSE(planned.empty());
     EXPECT_EQ(planned.front(), 1u);
     for (std::size_t i = 1; i < planned.size(); ++i) EXPECT_LE(planned[i], 2 * planned[i - 1]);
@@ -142,12 +142,7 @@ TEST_F(DeterminismTest, MegakernelEqualsWavefront)
     // sphere box exercises refraction, Russian roulette and NEE.
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
     const Camera camera = validation::cornell_camera();
-    RenderSettings s;
-    s.integrator = IntegratorKind::Path;
-    s.width = 40;
-    s.height = 30;
-    s.spp = 5;
-    s.seed = 9;
+    RenderSettings s = small_path_render(5, 9);
     s.rr_depth = 2;
     s.wavefront_size = 1000;  // several pixel batches per sample
     ::setenv("GEOCOLD_PATH_KERNEL", "wavefront", 1);
