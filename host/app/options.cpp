@@ -161,6 +161,8 @@ Options parse_options(const std::vector<std::string>& args)
         else if (arg == "--threads") o.threads = static_cast<int>(parse_count(arg, value(), 1, kMaxThreads));
         else if (arg == "--wavefront-size")
             o.render.wavefront_size = static_cast<std::uint32_t>(parse_count(arg, value(), 1024, 1u << 26));
+        else if (arg == "--samples-per-pass")
+            o.render.samples_per_pass = static_cast<std::uint32_t>(parse_count(arg, value(), 1, 1u << 16));
         else if (arg == "--look-from") o.look_from = Point3(parse_triple(arg, value()));
         else if (arg == "--look-at") o.look_at = Point3(parse_triple(arg, value()));
         else if (arg == "--up") o.up = Vec3(parse_triple(arg, value()));
@@ -232,6 +234,9 @@ Rendering:
                            map (.exr/.hdr/.pfm; +Y up), importance sampled
       --env-scale R,G,B    multiplies the environment map (default 1,1,1)
       --wavefront-size N   paths in flight per pass (default: chosen for the device)
+      --samples-per-pass N at most N samples per pixel in one pass (default: on CPUs as
+                           many as fill about half a second, up to 16; on GPUs as many as
+                           the wavefront holds); the image is the same bits either way
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
 Vulkan (when built with it):

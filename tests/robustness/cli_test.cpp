@@ -43,6 +43,7 @@ TEST(Cli, BadOptionsAreUsageErrors)
         {{scene, "--env", "1,nan,1"}, "--env expects a finite number"},
         {{scene, "--time-limit", "-1"}, "--time-limit expects a positive number of seconds"},
         {{scene, "--wavefront-size", "1"}, "--wavefront-size expects an integer in [1024,"},
+        {{scene, "--samples-per-pass", "0"}, "--samples-per-pass expects an integer in [1,"},
         {{scene, "--up", "0,0,0"}, "--up must not be the zero vector"},
         {{scene, "--spp"}, "--spp needs a value"},
         {{scene, scene}, "more than one scene given"},
