@@ -10,6 +10,7 @@
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
+#include "host/render/pass_planner.h"
 #include "host/render/renderer.h"
 #include "host/scene/camera_framing.h"
 #include "host/scene/load.h"
@@ -110,7 +111,13 @@ ExitCode run_render(const Options& options)
     const auto render_start = Clock::now();
     bool interrupted = false;
     while (renderer.samples_done() < settings.spp) {
-        renderer.render_samples(settings.spp - renderer.samples_done());
+        std::uint32_t wanted = settings.spp - renderer.samples_done();
+        // With a time limit, a pass is cut to what fits before it (the CPU's passes grow to
+        // two seconds in long renders): it stops at most about one sample's time late.
+        if (settings.time_limit_seconds > 0)
+            wanted = samples_before_deadline(settings.time_limit_seconds - seconds_since(render_start),
+                                             renderer.seconds_per_sample(), wanted);
+        renderer.render_samples(wanted);
         progress.update(renderer.samples_done());
         if (interrupt_requested()) {
             interrupted = true;

@@ -5,15 +5,18 @@
 // camera ray and first hit, so the second and later ones find that part of the BVH, the
 // triangles and the shading data in the core's caches: on the 2-core VM, one PoCL thread,
 // the 100k-triangle dragon at 320x240 renders 1.25-1.3x faster with 16 samples per pass than
-// with one (the 36-triangle Cornell box, which lives in L1 either way, 1.03x). Mitsuba 3 lays
-// its wavefront out the same way (each pixel's samples side by side).
+// with one (the 36-triangle Cornell box, which lives in L1 either way, 1.03x); at 1920x1080 on
+// both cores, 6 samples per pass against one give 1.14x. Mitsuba 3 lays its wavefront out the
+// same way (each pixel's samples side by side).
 //
 // Longer passes, though, mean a coarser progress bar and a later stop for --time-limit and
-// Ctrl-C. So the planner aims each pass at a fixed length, as Cycles' render scheduler does:
-// it starts at one sample and, from the measured time per sample, doubles (at most) towards
-// the count that fills kTargetSeconds, never above kMaxSamples. Grouping never changes the
-// image (each pixel adds its samples in sample order; tests/validation/determinism_test.cpp),
-// so a timing-driven plan keeps renders bit for bit reproducible.
+// Ctrl-C. So the planner aims each pass at a length, as Cycles' render scheduler does: half a
+// second at first, then a tenth of the time rendered so far, up to two seconds, so that a
+// long render updates less often (and runs faster) than a short one. It starts at one sample
+// and, from the measured time per sample, doubles (at most) towards the count that fills the
+// target, never above kMaxSamples. Grouping never changes the image (each pixel adds its
+// samples in sample order; tests/validation/determinism_test.cpp), so a timing-driven plan
+// keeps renders bit for bit reproducible.
 #pragma once
 
 #include <cstdint>
@@ -22,7 +25,9 @@ namespace gc {
 
 class PassPlanner {
 public:
-    static constexpr double kTargetSeconds = 0.5;  // aimed length of one pass
+    static constexpr double kMinTargetSeconds = 0.5;  // aimed length of the first passes
+    static constexpr double kMaxTargetSeconds = 2.0;  // ... and of a long render's
+    static constexpr double kTargetShare = 0.1;       // of the time rendered so far, between the two
     static constexpr std::uint32_t kMaxSamples = 16;
 
     // fixed_samples > 0 turns the planning off: every pass traces that many (tests, A/B runs).
@@ -39,11 +44,26 @@ public:
     // driver's compiling the work-group function (PoCL does that at the first launch).
     bool settled() const { return m_fixed != 0 || (m_passes >= 2 && m_settled); }
 
+    // The last pass's seconds per sample; 0 before the first. What a caller with a deadline
+    // (--time-limit) needs to keep a pass from running far past it.
+    double seconds_per_sample() const { return m_seconds_per_sample; }
+
+    // The length the next pass aims at.
+    double target_seconds() const;
+
 private:
     std::uint32_t m_fixed = 0;
     std::uint32_t m_planned = 1;
     std::uint32_t m_passes = 0;  // passes recorded
+    double m_elapsed = 0.0;      // their seconds
+    double m_seconds_per_sample = 0.0;
     bool m_settled = false;
 };
+
+// How many of `remaining` samples a render with `seconds_left` before its deadline should ask
+// for next, passes taking `seconds_per_sample` (0: unknown): enough to reach the deadline,
+// rounded up, so the pass that crosses it ends at most about one sample's time past it; at
+// least 1, so that a render past its deadline still finishes the pass it is asked for.
+std::uint32_t samples_before_deadline(double seconds_left, double seconds_per_sample, std::uint32_t remaining);
 
 }  // namespace gc

@@ -125,7 +125,8 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     // On a GPU, an image smaller than the wavefront would leave most of it idle and pay the ~30
     // launches of a pass for few paths, so the wavefront is filled with samples. On a CPU, a
     // megakernel work-item runs its pixel's samples back to back, which keeps that pixel's part
-    // of the scene in the core's caches; the planner sizes the pass (pass_planner.h).
+    // of the scene in the core's caches; the planner sizes the pass (pass_planner.h). Every
+    // form's pass time is recorded, for callers with a deadline (seconds_per_sample).
     // accumulate.cl and the megakernel add each pixel's samples in sample order, so the image
     // is the same bits as one sample per pass.
     std::uint32_t samples = 1;
@@ -147,8 +148,7 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
         else run_path_batch();
     }
     m_context.finish();
-    if (m_megakernel)
-        m_planner.record(samples, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    m_planner.record(samples, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     m_samples += samples;
     return samples;
 }

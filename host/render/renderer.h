@@ -32,12 +32,14 @@ public:
 
     // Adds between 1 and max_samples samples to every pixel and returns how many: the path
     // integrator traces several samples per pixel in one pass, on GPUs when the image is
-    // smaller than the wavefront, on CPUs as many as fill about half a second (PassPlanner).
+    // smaller than the wavefront, on CPUs as many as fill the planner's pass length (PassPlanner).
     // The image after n samples is the same bits however they were grouped.
     std::uint32_t render_samples(std::uint32_t max_samples);
 
     // Whether the passes have reached their steady size (benchmarks time from there on).
     bool passes_settled() const { return !m_megakernel || m_planner.settled(); }
+    // The last pass's seconds per sample (0 before the first): for a caller with a deadline.
+    double seconds_per_sample() const { return m_planner.seconds_per_sample(); }
 
     std::uint32_t samples_done() const { return m_samples; }
     std::uint32_t wavefront_size() const { return m_batch; }
@@ -66,7 +68,7 @@ private:
     std::uint32_t m_batch = 0;          // pixels per pass
     std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
     std::uint32_t m_samples = 0;
-    PassPlanner m_planner;              // samples per pass of the megakernel
+    PassPlanner m_planner;              // samples per pass of the megakernel; pass times of any form
 
     cl::Buffer<glm::vec4> m_film;
     cl::Buffer<glm::vec4> m_film_squares;

@@ -1,6 +1,7 @@
 // host/render/pass_planner: how the CPU path integrator sizes its passes from their times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -72,6 +73,36 @@ TEST(PassPlanner, ASlowPassShrinksTheNext)
     EXPECT_EQ(planner.next(100), 16u);
     planner.record(16, 16 * 0.2);  // the machine got busy: 0.2 s per sample
     EXPECT_EQ(planner.next(100), 2u);
+}
+
+TEST(PassPlanner, ALongRenderGrowsItsPassesToTwoSeconds)
+{
+    // 0.25 s per sample: two fill the first half-second passes; once a tenth of the time
+    // rendered exceeds that, passes lengthen, up to 2 s (eight samples), never beyond.
+    PassPlanner planner;
+    const std::vector<std::uint32_t> passes = plan(planner, 200, 0.25);
+    EXPECT_EQ(passes.front(), 1u);
+    EXPECT_EQ(passes[1], 2u);
+    EXPECT_EQ(*std::max_element(passes.begin(), passes.end()), 8u);
+    EXPECT_EQ(passes[passes.size() - 2], 8u);
+    double elapsed = 0.0;
+    for (std::uint32_t p : passes) {
+        EXPECT_LE(p * 0.25, std::max(PassPlanner::kMinTargetSeconds,
+                                     std::min(PassPlanner::kMaxTargetSeconds, PassPlanner::kTargetShare * elapsed)) +
+                                1e-9);
+        elapsed += p * 0.25;
+    }
+    EXPECT_DOUBLE_EQ(planner.target_seconds(), PassPlanner::kMaxTargetSeconds);
+    EXPECT_DOUBLE_EQ(planner.seconds_per_sample(), 0.25);
+}
+
+TEST(PassPlanner, ADeadlineCutsThePassToWhatFits)
+{
+    EXPECT_EQ(samples_before_deadline(1.0, 0.25, 16), 4u);
+    EXPECT_EQ(samples_before_deadline(1.1, 0.25, 16), 5u);  // rounded up: the pass may cross it
+    EXPECT_EQ(samples_before_deadline(10.0, 0.25, 16), 16u); // never more than remain
+    EXPECT_EQ(samples_before_deadline(-3.0, 0.25, 16), 1u);  // past the deadline: one more
+    EXPECT_EQ(samples_before_deadline(1.0, 0.0, 16), 16u);   // no time measured yet
 }
 
 TEST(PassPlanner, AFixedCountIsKeptAndNeverExceedsWhatIsLeft)

@@ -192,6 +192,31 @@ TEST(Cli, ThreadsCapsTheCpuDevice)
     EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
+// --time-limit ends a render that asked for far more samples than fit, with the image of the
+// samples done. 10^6 spp of a 64x64 Cornell box would take minutes on the slowest device
+// here; the bound of 30 s is loose so that a loaded machine cannot fail it, and still far
+// below what ignoring the limit costs.
+TEST(Cli, TimeLimitEndsTheRenderWithTheSamplesDone)
+{
+    if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
+    const TempDir dir;
+    const RunResult r =
+        run_process(cli_path(), {k_cornell.string(), "--spp", "1000000", "--res", "64x64", "--time-limit", "1",
+                                 "--device", "cpu", "-o", (dir / "limited.pfm").string()},
+                    cli_options());
+    show("--spp 1000000 --time-limit 1", r);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_LT(r.seconds, 30.0);
+    EXPECT_TRUE(std::filesystem::exists(dir / "limited.pfm"));
+    // "wrote ... (64x64, N spp, ...)": some samples, not all of them.
+    const std::size_t at = r.err.find("64x64, ");
+    ASSERT_NE(at, std::string::npos) << r.err;
+    const unsigned long spp = std::strtoul(r.err.c_str() + at + 7, nullptr, 10);
+    std::printf("  rendered %lu of 1000000 spp\n", spp);
+    EXPECT_GT(spp, 0ul);
+    EXPECT_LT(spp, 1000000ul);
+}
+
 // A glTF model shipped without lights (the usual case) under the default black environment
 // renders black: the user hears so before the render, with the way out, and the render still
 // runs (exit 0). A lit scene and an --env say nothing.

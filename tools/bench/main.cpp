@@ -129,7 +129,8 @@ Options parse(int argc, char** argv)
                         "figures from another day).\n"
                         "--wavefront N and --samples-per-pass N (0: the default) fix what the renderer otherwise\n"
                         "chooses per device: paths in flight per pass, and samples per pixel in one pass (a CPU\n"
-                        "plans these to fill about half a second, up to 16: host/render/pass_planner.h).\n");
+                        "plans passes of half a second, in long runs up to two, and up to 16 samples:\n"
+                        "host/render/pass_planner.h).\n");
             std::exit(0);
         } else {
             throw UsageError("unknown option '" + a + "' (see --help)");
