@@ -658,25 +658,26 @@ void check_options(const BvhBuildOptions& o)
     if (o.threads < 0) fail("threads = " + std::to_string(o.threads) + " must be >= 0 (0: all cores)");
 }
 
-std::string scene_name(const Scene& scene) { return scene.name_for_messages(); }
-
-// The arrays that flatten and the device upload index per triangle, as a Scene made in code
-// (not by a loader) might lack them: sizes only here; flatten checks each material index.
+// The arrays that the bounds pass, flatten and the device upload index per triangle, which a
+// Scene made in code (not by a loader) might lack: sizes only here; flatten checks each
+// material index.
 void check_per_triangle_arrays(const Scene& scene)
 {
     const std::size_t count = scene.triangle_count();
-    auto expect = [&](const char* what, std::size_t size, std::size_t wanted, bool may_be_empty) {
-        if (size != wanted && !(may_be_empty && size == 0))
-            throw InputError(scene_name(scene) + ": scene has " + std::to_string(count) + " triangles but " +
-                             std::to_string(size) + " " + what + " (expected " + std::to_string(wanted) +
-                             (may_be_empty ? ", or none)" : ")"));
+    auto expect = [&](const char* what, std::size_t size, std::size_t per_triangle, bool may_be_empty) {
+        if (size != per_triangle * count && !(may_be_empty && size == 0))
+            throw InputError(scene.name_for_messages() + ": scene has " + std::to_string(count) + " triangles but " +
+                             std::to_string(size) + " " + what + " (expected " + std::to_string(per_triangle) +
+                             " per triangle" + (may_be_empty ? ", or none)" : ")"));
     };
-    expect("vertex normals", scene.normals.size(), 3 * count, false);
-    expect("texture coordinates", scene.uvs.size(), 3 * count, true);
-    expect("tangents", scene.tangents.size(), 3 * count, true);
-    expect("vertex-normal flags", scene.has_vertex_normals.size(), count, true);
+    expect("vertex positions", scene.positions.size(), 3, false);
+    expect("vertex normals", scene.normals.size(), 3, false);
+    expect("texture coordinates", scene.uvs.size(), 3, true);
+    expect("tangents", scene.tangents.size(), 3, true);
+    expect("vertex-normal flags", scene.has_vertex_normals.size(), 1, true);
     if (count > 0 && scene.materials.empty())
-        throw InputError(scene_name(scene) + ": scene has " + std::to_string(count) + " triangles but no materials");
+        throw InputError(scene.name_for_messages() + ": scene has " + std::to_string(count) +
+                         " triangles but no materials");
 }
 
 // One chunk of the bounds pass: references for triangles [begin, end), their joint bounds,
@@ -720,13 +721,10 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
 {
     check_options(options);
     const std::size_t count = scene.triangle_count();
-    if (scene.positions.size() != 3 * count)
-        throw InputError(scene_name(scene) + ": scene has " + std::to_string(count) + " triangles but " +
-                         std::to_string(scene.positions.size()) + " vertex positions (expected 3 per triangle)");
     check_per_triangle_arrays(scene);
     // Node indices are 32-bit and a tree has up to 2n - 1 nodes.
     if (count >= (std::size_t{1} << 31))
-        throw InputError(scene_name(scene) + ": " + std::to_string(count) +
+        throw InputError(scene.name_for_messages() + ": " + std::to_string(count) +
                          " triangles are more than the BVH's 32-bit indices can address (2^31 - 1)");
 
     BvhTree tree;
@@ -750,7 +748,7 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
     Box4 cbox;
     for (const PrimChunk& p : parts) {
         if (p.first_bad < count)
-            throw InputError(scene_name(scene) + ": triangle " + std::to_string(p.first_bad) +
+            throw InputError(scene.name_for_messages() + ": triangle " + std::to_string(p.first_bad) +
                              " has a non-finite vertex coordinate (NaN or infinity)");
         box.grow(p.box);
         cbox.grow(p.cbox);
