@@ -70,6 +70,7 @@ struct Options {
     int wavefront = 0;              // --wavefront: paths in flight per pass, 0 = the renderer's default
     int samples_per_pass = 0;       // --samples-per-pass: a fixed count, 0 = the renderer's plan
     std::string first_image_child; // the device key (device_key()) in the child process
+    std::string first_image_scene = "cornell"; // and the scene it renders
     bool list_device_keys = false;  // child: print "<label>\t<key>" per selected device
 };
 
@@ -115,6 +116,7 @@ Options parse(int argc, char** argv)
         else if (a == "--wavefront") o.wavefront = integer(i, 1, 1 << 24);
         else if (a == "--samples-per-pass") o.samples_per_pass = integer(i, 0, 1 << 16);
         else if (a == "--first-image-child") o.first_image_child = value(i);
+        else if (a == "--first-image-scene") o.first_image_scene = value(i);
         else if (a == "--list-device-keys") o.list_device_keys = true;
         else if (a == "--help" || a == "-h") {
             std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
@@ -507,14 +509,16 @@ int list_device_keys(const Options& o)
     return 0;
 }
 
-// Time to first image, each device in fresh child processes with fresh caches. The parent
-// must not have touched OpenCL yet: on the lent H200 node a child started after the parent
-// had merely enumerated the NVIDIA platform no longer saw it (while the same child started
-// from a shell did), so even the device list comes from a child here.
+// Time to first image, each scene on each device in fresh child processes with fresh caches
+// (a cold start compiles the program each scene's features ask for). The parent must not
+// have touched OpenCL yet: on the lent H200 node a child started after the parent had merely
+// enumerated the NVIDIA platform no longer saw it (while the same child started from a shell
+// did), so even the device list comes from a child here.
 void bench_first_images(const Options& o, json& doc)
 {
     if (!o.first_image) return;
-    say("\n== time to first image (Cornell box %s, 1 sample, depth 8, fresh process) ==\n", o.quick ? "64x64" : "512x512");
+    say("\n== time to first image (each scene's path view, 1 sample, depth 8, a fresh process; cold: empty "
+        "kernel caches) ==\n");
     std::vector<std::pair<std::string, std::string>> devices;  // label, key
     {
         const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
@@ -532,29 +536,40 @@ void bench_first_images(const Options& o, json& doc)
         }
         pclose(pipe);
     }
-    for (std::size_t i = 0; i < devices.size(); ++i) {
-        const auto& [name, key] = devices[i];
-        namespace fs = std::filesystem;
-        const fs::path root = fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" + std::to_string(i));
-        fs::remove_all(root);
-        fs::create_directories(root);
-        const FirstImage cold = run_first_image(key, root.string(), o.quick);
-        const FirstImage warm = run_first_image(key, root.string(), o.quick);
-        fs::remove_all(root);
-        for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
-            if (!fi.ok) {
-                say("  %s %s: failed: %s\n", name.c_str(), label, fi.error.c_str());
-                continue;
+    for (const std::string& scene : o.scenes) {
+        for (std::size_t i = 0; i < devices.size(); ++i) {
+            const auto& [name, key] = devices[i];
+            namespace fs = std::filesystem;
+            const fs::path root =
+                fs::temp_directory_path() / ("geocold-bench-cache-" + std::to_string(::getpid()) + "-" + std::to_string(i));
+            fs::remove_all(root);
+            fs::create_directories(root);
+            const FirstImage cold = run_first_image(key, scene, root.string());
+            const FirstImage warm = cold.skipped ? cold : run_first_image(key, scene, root.string());
+            fs::remove_all(root);
+            if (cold.skipped) {
+                say("  %s: skipped (%s)\n", scene.c_str(), cold.error.c_str());
+                doc["first_image"][scene] = {{"skipped", cold.error}};
+                break;
             }
-            say("  %s %s: %.3f s in process (%.3f s wall with process start); program %s %.3f s; first sample + read-back "
-                "%.3f s; devices listed %.3f s, context %.3f s\n",
-                name.c_str(), label, fi.total_seconds, fi.process_seconds, fi.from_cache ? "from cache" : "compiled",
-                fi.compile_seconds, fi.render_seconds, fi.devices_seconds, fi.context_seconds);
-            doc["first_image"][name][label] = {{"seconds", fi.total_seconds}, {"process_seconds", fi.process_seconds},
-                                               {"compile_seconds", fi.compile_seconds},
-                                               {"render_seconds", fi.render_seconds}, {"from_cache", fi.from_cache},
-                                               {"devices_seconds", fi.devices_seconds},
-                                               {"context_seconds", fi.context_seconds}};
+            for (const auto& [label, fi] : {std::pair<const char*, const FirstImage&>{"cold", cold}, {"warm", warm}}) {
+                if (!fi.ok) {
+                    say("  %s %s %s: failed: %s\n", scene.c_str(), name.c_str(), label, fi.error.c_str());
+                    continue;
+                }
+                say("  %s %s %s: %.3f s in process (%.3f s wall with process start): scene + BVH %.3f s, device "
+                    "layout %.3f s, program %s %.3f s, first sample + read-back %.3f s; devices listed %.3f s, "
+                    "context %.3f s\n",
+                    scene.c_str(), name.c_str(), label, fi.total_seconds, fi.process_seconds, fi.scene_seconds,
+                    fi.upload_seconds, fi.from_cache ? "from cache" : "compiled", fi.compile_seconds, fi.render_seconds,
+                    fi.devices_seconds, fi.context_seconds);
+                doc["first_image"][scene][name][label] = {
+                    {"seconds", fi.total_seconds},       {"process_seconds", fi.process_seconds},
+                    {"scene_seconds", fi.scene_seconds}, {"upload_seconds", fi.upload_seconds},
+                    {"compile_seconds", fi.compile_seconds}, {"render_seconds", fi.render_seconds},
+                    {"from_cache", fi.from_cache},       {"devices_seconds", fi.devices_seconds},
+                    {"context_seconds", fi.context_seconds}};
+            }
         }
     }
 }
@@ -586,7 +601,7 @@ int run(int argc, char** argv)
         set_host_thread_count(o.threads);
         cl::limit_cpu_device_threads(o.threads);
     }
-    if (!o.first_image_child.empty()) return first_image_child(o.first_image_child, o.quick);
+    if (!o.first_image_child.empty()) return first_image_child(o.first_image_child, o.first_image_scene);
     if (o.list_device_keys) return list_device_keys(o);
     if (o.json_out) g_text = stderr;
 
