@@ -20,7 +20,9 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     const std::vector<dev::GcEmitter> emitters = make_emitters(scene);
     const std::vector<dev::GcPointLight> lights = make_point_lights(scene);
     d.bvh = DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()));
-    d.attribs = cl::read_only_buffer(context, make_triangle_attribs(scene), "triangle attributes");
+    auto attribs = std::make_shared<const BigArray<dev::GcTriangleAttribs>>(make_triangle_attribs(scene));
+    d.attribs = cl::Buffer<dev::GcTriangleAttribs>::over_host(context, *attribs, "triangle attributes");
+    if (context.device().is_cpu) d.host_attribs = std::move(attribs);
     const std::vector<dev::GcMaterial> materials = make_materials(scene);
     d.materials = cl::read_only_buffer(context, materials, "materials");
     d.textures = cl::read_only_buffer(context, textures.textures, "textures");

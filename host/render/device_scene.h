@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <tuple>
 
 #include "gc_types.h"
+#include "host/bvh/big_array.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/buffer.h"
 #include "host/render/device_bvh.h"
@@ -16,6 +18,9 @@
 namespace gc {
 
 struct DeviceScene {
+    // The triangle attributes' host array, which CPU devices read in place (like the wide
+    // BVH's arrays in DeviceBvh). Declared before the buffers so that it outlives them.
+    std::shared_ptr<const BigArray<dev::GcTriangleAttribs>> host_attribs;
     DeviceBvh bvh;  // BVH2 or BVH4, as bvh_layout_for(device) chose
     cl::Buffer<dev::GcTriangleAttribs> attribs;
     cl::Buffer<dev::GcMaterial> materials;

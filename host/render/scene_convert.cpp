@@ -1,10 +1,13 @@
 #include "host/render/scene_convert.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "gc_tangent.h"
+#include "host/bvh/task_pool.h"
 #include "host/util/error.h"
+#include "host/util/host_threads.h"
 
 namespace gc {
 namespace {
@@ -83,16 +86,15 @@ std::uint32_t integrator_code(IntegratorKind kind)
     return GC_INTEGRATOR_AOV;
 }
 
-}  // namespace
-
-std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
+// Triangles [begin, end) of make_triangle_attribs.
+void fill_triangle_attribs(const Scene& scene, dev::GcTriangleAttribs* out, std::size_t begin, std::size_t end)
 {
     const std::size_t n = scene.triangle_count();
-    std::vector<dev::GcTriangleAttribs> out(n);
     const bool has_uv = !scene.uvs.empty();
     const bool has_tangents = scene.tangents.size() == 3 * n;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
         dev::GcTriangleAttribs& a = out[i];
+        a = dev::GcTriangleAttribs{};
         a.n0 = v4(scene.normals[3 * i + 0]);
         a.n1 = v4(scene.normals[3 * i + 1]);
         a.n2 = v4(scene.normals[3 * i + 2]);
@@ -120,6 +122,27 @@ std::vector<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
             a.flags |= GC_TRIF_HAS_TANGENTS;
         }
     }
+}
+
+}  // namespace
+
+BigArray<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
+{
+    const std::size_t n = scene.triangle_count();
+    BigArray<dev::GcTriangleAttribs> out(n);  // uninitialised: every element is written below
+    // Chunks of 16k triangles (1.8 MB) keep the pool's overhead far below the work; scenes
+    // of one chunk are filled on the calling thread.
+    constexpr std::size_t kChunk = std::size_t{1} << 14;
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    const int threads = host_thread_count();
+    if (chunks <= 1 || threads <= 1) {
+        fill_triangle_attribs(scene, out.data(), 0, n);
+        return out;
+    }
+    TaskPool pool(threads);
+    pool.for_each(chunks, [&](std::size_t c) {
+        fill_triangle_attribs(scene, out.data(), c * kChunk, std::min(n, (c + 1) * kChunk));
+    });
     return out;
 }
 

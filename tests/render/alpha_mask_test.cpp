@@ -50,7 +50,7 @@ std::vector<Ray> grid_rays(float t_max)
 }
 
 struct DeviceAlpha {
-    std::vector<dev::GcTriangleAttribs> attribs;
+    BigArray<dev::GcTriangleAttribs> attribs;
     std::vector<dev::GcMaterial> materials;
     DeviceTextures textures;
     AlphaBuffers view() const { return {attribs.data(), materials.data(), textures.textures.data(), textures.texels.data()}; }

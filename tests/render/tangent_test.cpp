@@ -112,7 +112,7 @@ TEST(AuthoredTangents, SceneConvertPacksThemIntoTheNormalsW)
     ASSERT_EQ(s.tangents.size(), 9u);
     for (int j = 0; j < 3; ++j) EXPECT_EQ(s.tangents[static_cast<std::size_t>(j)], glm::vec4(0.0f));
 
-    const std::vector<GcTriangleAttribs> a = make_triangle_attribs(s);
+    const BigArray<GcTriangleAttribs> a = make_triangle_attribs(s);
     ASSERT_EQ(a.size(), 3u);
     EXPECT_EQ(a[0].flags & GC_TRIF_HAS_TANGENTS, 0u);
     EXPECT_EQ(a[0].n0.w, 0.0f);
@@ -131,7 +131,7 @@ TEST(AuthoredTangents, SceneConvertPacksThemIntoTheNormalsW)
 
 // gc_shade_normal on a 1x1 normal map of `texel` (RGB, linear) at barycentrics (0.3, 0.3).
 struct NormalMap {
-    std::vector<GcTriangleAttribs> attribs;
+    BigArray<GcTriangleAttribs> attribs;
     std::vector<dev::GcMaterial> materials;
     std::vector<dev::GcTexture> textures{{0u, 1u, 1u, 0u}};
     std::vector<dev::uint> texels{0u};
