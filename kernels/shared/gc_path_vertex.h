@@ -57,6 +57,7 @@
  * Include gc_alpha.h first (otherwise attribs..texels are missing and the kernel fails to
  * compile). The host's twin is DeviceScene::scene_args(), which sets them in this order. */
 #define GC_SCENE_PARAMS GC_BVH_PARAMS, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
+#define GC_SCENE_ARGS GC_BVH_ARGS, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
 #endif
 #ifndef GC_SHADE_UNUSED
 #define GC_SHADE_UNUSED()

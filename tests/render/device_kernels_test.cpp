@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "../bvh/test_scenes.h"
+#include "gc_intersect.h"
 #include "gc_rng.h"
 #include "gc_sampling.h"
 #include "host/bvh/bvh.h"
@@ -148,6 +150,95 @@ TEST(DeviceTraversal, DragonEqualsBruteForce)
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
     // 2,500 rays x 100k triangles of brute force is already 2.5e8 triangle tests.
     expect_traversal_matches(load_scene(path), "stanford-dragon-100k", 2500);
+}
+
+// Eight rays per work-item as one packet (gc_packet8.h, what the CPU path megakernel traces
+// a pixel's camera rays with) against the single-ray traversal of the same BVH8 on the same
+// device: the same hit records, bit for bit, lane by lane; inactive lanes miss.
+std::size_t packet_hits_differing(const cl::DeviceInfo& device, const Scene& scene, const std::vector<dev::GcRay>& rays,
+                                  std::size_t* hits)
+{
+    const FlatBvh bvh = build_bvh(scene);
+    const cl::Context context(device);
+    const DeviceBvh device_bvh = DeviceBvh::upload(context, bvh, BvhLayout::Wide8);
+    const cl::Program program(context, "trace.cl", program_options(BvhLayout::Wide8));
+    const auto count = static_cast<std::uint32_t>(rays.size());
+    std::vector<int> active(count);
+    for (std::uint32_t i = 0; i < count; ++i) active[i] = (i / 8 * 3 + i % 8) % 7 == 6 ? 0 : 1;  // some lanes idle
+    auto ray_buf = cl::Buffer<dev::GcRay>::create(context, count, CL_MEM_READ_ONLY, "rays");
+    auto active_buf = cl::Buffer<int>::create(context, count, CL_MEM_READ_ONLY, "active lanes");
+    auto single_buf = cl::Buffer<dev::GcHit>::create(context, count, CL_MEM_WRITE_ONLY, "single-ray hits");
+    auto packet_buf = cl::Buffer<dev::GcHit>::create(context, count, CL_MEM_WRITE_ONLY, "packet hits");
+    ray_buf.write(rays);
+    active_buf.write(active);
+    cl::Kernel single = program.kernel("trace_closest");
+    single.set_args(device_bvh.nodes(), device_bvh.triangles(), ray_buf, single_buf, count);
+    single.launch(context, count);
+    cl::Kernel packets = program.kernel("trace_closest8");
+    packets.set_args(device_bvh.nodes(), device_bvh.triangles(), ray_buf, active_buf, packet_buf, count / 8);
+    packets.launch(context, count / 8);
+    context.finish();
+    std::vector<dev::GcHit> expected(count);
+    std::vector<dev::GcHit> got(count);
+    single_buf.read(expected);
+    packet_buf.read(got);
+    std::size_t differing = 0;
+    *hits = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const dev::GcHit want = active[i] ? expected[i] : dev::gc_no_hit();
+        if (active[i] && want.prim != GC_INVALID) ++*hits;
+        differing += std::memcmp(&want, &got[i], sizeof want) != 0 ? 1 : 0;
+    }
+    return differing;
+}
+
+TEST(DeviceTraversal, PacketsOfEightEqualSingleRays)
+{
+    const std::vector<cl::DeviceInfo> devices = devices_or_skip();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    // Incoherent: every lane its own random ray through a random soup whose first 2500
+    // triangles appear twice, so that many hits are exact ties in t, which the smaller scene
+    // index must win (gc_traverse.h's tie rule) in the packet as in the single ray.
+    Scene soup = test::random_soup(5000, 7, 0.15f);
+    for (std::size_t i = 0; i < 2500; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            soup.positions.push_back(soup.positions[3 * i + j]);
+            soup.normals.push_back(soup.normals[3 * i + j]);
+        }
+        soup.material_ids.push_back(soup.material_ids[i]);
+        soup.has_vertex_normals.push_back(soup.has_vertex_normals[i]);
+    }
+    std::vector<dev::GcRay> scattered;
+    for (const Ray& r : random_rays(soup, 8000, 4321)) scattered.push_back(to_device(r));
+    // Coherent: a pixel's camera rays into the Cornell box with the sphere (eight jittered
+    // directions per pixel of a 40x40 view, as the megakernel's packets), every fifth packet a
+    // segment from t 0.5 to 3 instead of a whole ray.
+    const Scene box = load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj");
+    std::vector<dev::GcRay> camera;
+    test::Rng rng(77);
+    for (int p = 0; p < 40 * 40; ++p) {
+        const bool segment = p % 5 == 4;
+        for (int k = 0; k < 8; ++k) {
+            const float sx = ((p % 40) + rng.uniform()) / 20.0f - 1.0f;
+            const float sy = 1.0f - ((p / 40) + rng.uniform()) / 20.0f;
+            const glm::vec3 d = glm::normalize(glm::vec3(0.72f * sx, 0.72f * sy, -2.0f));
+            camera.push_back(dev::gc_make_ray(glm::vec3(0.0f, 1.0f, 3.9f), d, segment ? 0.5f : 0.0f,
+                                              segment ? 3.0f : GC_RAY_UNBOUNDED));
+        }
+    }
+    for (const cl::DeviceInfo& device : devices) {
+        for (const auto& [name, scene, rays] : {std::tuple<const char*, const Scene&, const std::vector<dev::GcRay>&>{
+                                                    "random soup with duplicates, scattered rays", soup, scattered},
+                                                {"CornellBox-Sphere, camera rays", box, camera}}) {
+            std::size_t hits = 0;
+            const std::size_t differing = packet_hits_differing(device, scene, rays, &hits);
+            std::printf("[packets] %s on %s: %zu rays in packets of 8, %zu hits, %zu hit records differ from the "
+                        "single-ray traversal's\n",
+                        name, device.device_name.c_str(), rays.size(), hits, differing);
+            EXPECT_GT(hits, rays.size() / 5) << "too few hits to mean anything";
+            EXPECT_EQ(differing, 0u) << device.device_name << ", " << name;
+        }
+    }
 }
 
 TEST(DeviceRng, StreamEqualsHost)

@@ -1,0 +1,296 @@
+/*
+ * gc_packet8.h — closest hits of eight rays in one traversal of the BVH8, for rays that
+ * travel together: the camera rays of one pixel's consecutive samples, which the CPU path
+ * megakernel traces as one packet (kernels/megakernel.cl). They leave one point through one
+ * pixel, so they open nearly the same nodes and triangles, and one traversal with the eight
+ * rays in float8 lanes replaces eight: node loads, child ordering and stack work are paid
+ * once, and a triangle is tested against all eight rays in one set of vector operations.
+ * Rays that part ways after the first bounce are traced one by one (gc_traverse8.h): in
+ * packets they lost (tools/bench/experiments, "Explicit SIMD across paths").
+ *
+ * Same hits as gc_trace_closest, bit for bit, ray by ray. Each lane performs the single-ray
+ * code's operations: the precomputation of gc_ray_precompute and gc_ray_with_extent_margin,
+ * the box entries of gc_box8_entry, the watertight test of gc_intersect_triangle4 with its
+ * noise floor, the alpha test. The answer is the (t, scene index) minimum of gc_traverse.h's
+ * tie rule, which no visiting order changes, and a box is skipped for a ray only by the
+ * single-ray test's widened `entry <= t_best`. Children are visited nearest first by their
+ * smallest entry over the rays that hit them; a popped child is dropped only when its entry
+ * is past every ray's best. tests/render/device_kernels_test.cpp compares against the brute
+ * force on every device, and the path tests compare the megakernel's image bits with the
+ * wavefront's.
+ *
+ * OpenCL C, programs built for the BVH8 only (-D GC_BVH_WIDE8: CPUs with 8-wide SIMD); the
+ * host and GLSL keep single rays. GC_HAVE_PACKET8 says whether it is compiled.
+ */
+#ifndef GC_PACKET8_H
+#define GC_PACKET8_H
+
+#include "gc_traverse.h"
+
+#if defined(GC_OPENCL) && defined(GC_BVH_WIDE8)
+#define GC_HAVE_PACKET8 1
+
+GC_NAMESPACE_BEGIN
+
+/* Eight rays, lane k being ray k; `active` (-1 or 0 per lane) says which lanes hold one. */
+typedef struct {
+    float8 ox, oy, oz;
+    float8 dx, dy, dz;
+    float8 tmin, tmax;
+    int8 active;
+} GcRays8;
+
+/* Eight hits, as GcHit per lane (a miss or an inactive lane: prim GC_INVALID, t +inf). */
+typedef struct {
+    float8 t, u, v;
+    uint8 prim;
+} GcHits8;
+
+/* The per-ray constants of gc_ray_precompute and gc_ray_with_extent_margin, per lane. */
+typedef struct {
+    float8 ox, oy, oz;
+    float8 ix, iy, iz;    /* 1 / direction */
+    float8 sx, sy, sz;    /* Woop et al.'s shear */
+    float8 margin, tmin;
+    uint8 kx, ky, kz;     /* kz: the axis of the largest |direction| component */
+    int8 pos_x, pos_y, pos_z; /* 1 / direction >= 0: the near plane is the box's low one */
+} GcPacketPre8;
+
+/* One of three per-axis values by a per-lane axis index. */
+GC_FUNC float8 gc_axis8(uint8 k, float8 x, float8 y, float8 z)
+{
+    return select(select(z, y, k == (uint8)(1u)), x, k == (uint8)(0u));
+}
+
+GC_FUNC float8 gc_max_keep8(float8 x, float8 running) { return select(running, x, x > running); }
+GC_FUNC float8 gc_min_keep8(float8 x, float8 running) { return select(running, x, x < running); }
+GC_FUNC float8 gc_max8(float8 a, float8 b) { return select(b, a, a > b); }
+GC_FUNC float8 gc_abs_max8(float8 a, float8 b) { return gc_max8(fabs(a), fabs(b)); }
+
+GC_FUNC float gc_reduce_min8(float8 v)
+{
+    const float4 a = fmin(v.lo, v.hi);
+    const float2 b = fmin(a.lo, a.hi);
+    return fmin(b.x, b.y);
+}
+
+GC_FUNC float gc_reduce_max8(float8 v)
+{
+    const float4 a = fmax(v.lo, v.hi);
+    const float2 b = fmax(a.lo, a.hi);
+    return fmax(b.x, b.y);
+}
+
+GC_FUNC GcPacketPre8 gc_packet_precompute8(GcRays8 rays, float extent)
+{
+    GcPacketPre8 r;
+    r.ox = rays.ox;
+    r.oy = rays.oy;
+    r.oz = rays.oz;
+    r.ix = 1.0f / rays.dx;
+    r.iy = 1.0f / rays.dy;
+    r.iz = 1.0f / rays.dz;
+    const float8 inv_min = fmin(fabs(r.ix), fmin(fabs(r.iy), fabs(r.iz)));
+    const float8 ax = fabs(rays.dx);
+    const float8 ay = fabs(rays.dy);
+    const float8 az = fabs(rays.dz);
+    const uint8 two = (uint8)(2u);
+    r.kz = select(select(two, (uint8)(1u), ay > az), select(two, (uint8)(0u), ax > az), ax > ay);
+    r.kx = select(r.kz + 1u, (uint8)(0u), r.kz == two);
+    r.ky = select(r.kx + 1u, (uint8)(0u), r.kx == two);
+    r.sz = gc_axis8(r.kz, r.ix, r.iy, r.iz);
+    r.sx = gc_axis8(r.kx, rays.dx, rays.dy, rays.dz) * r.sz;
+    r.sy = gc_axis8(r.ky, rays.dx, rays.dy, rays.dz) * r.sz;
+    const float8 o_max = fmax(fabs(rays.ox), fmax(fabs(rays.oy), fabs(rays.oz)));
+    r.margin = GC_BOX_ABS_EPS * ((extent + o_max) * inv_min);
+    r.tmin = rays.tmin;
+    r.pos_x = r.ix >= 0.0f;
+    r.pos_y = r.iy >= 0.0f;
+    r.pos_z = r.iz >= 0.0f;
+    return r;
+}
+
+/* gc_ray_is_valid per lane. */
+GC_FUNC int8 gc_packet_valid8(GcRays8 rays)
+{
+    const int8 not_nan = (rays.ox == rays.ox) & (rays.oy == rays.oy) & (rays.oz == rays.oz) & (rays.dx == rays.dx) &
+                         (rays.dy == rays.dy) & (rays.dz == rays.dz);
+    const int8 nonzero = (rays.dx != 0.0f) | (rays.dy != 0.0f) | (rays.dz != 0.0f);
+    return not_nan & nonzero & (rays.tmin <= rays.tmax);
+}
+
+/* A BVH8 node's planes and children, stored for scalar reads of one child at a time. */
+typedef struct {
+    float lo_x[8], hi_x[8], lo_y[8], hi_y[8], lo_z[8], hi_z[8];
+    uint child[8];
+} GcPacketNode8;
+
+GC_FUNC void gc_packet_load_node8(GC_GLOBAL const GcBvh8Node* n, GcPacketNode8* out)
+{
+    vstore8((float8)(n->lo_x0, n->lo_x1), 0, out->lo_x);
+    vstore8((float8)(n->hi_x0, n->hi_x1), 0, out->hi_x);
+    vstore8((float8)(n->lo_y0, n->lo_y1), 0, out->lo_y);
+    vstore8((float8)(n->hi_y0, n->hi_y1), 0, out->hi_y);
+    vstore8((float8)(n->lo_z0, n->lo_z1), 0, out->lo_z);
+    vstore8((float8)(n->hi_z0, n->hi_z1), 0, out->hi_z);
+    vstore8((uint8)(n->child0, n->child1), 0, out->child);
+}
+
+/* Child c's box against the eight rays: lane c of gc_box8_entry, per ray. *hit says which
+ * rays enter it before their t_best. */
+GC_FUNC float8 gc_packet_box_entry8(const GcPacketPre8* r, const GcPacketNode8* n, uint c, float8 t_best, int8* hit)
+{
+    const float8 nx = select((float8)(n->hi_x[c]), (float8)(n->lo_x[c]), r->pos_x) - r->ox;
+    const float8 fx = select((float8)(n->lo_x[c]), (float8)(n->hi_x[c]), r->pos_x) - r->ox;
+    const float8 ny = select((float8)(n->hi_y[c]), (float8)(n->lo_y[c]), r->pos_y) - r->oy;
+    const float8 fy = select((float8)(n->lo_y[c]), (float8)(n->hi_y[c]), r->pos_y) - r->oy;
+    const float8 nz = select((float8)(n->hi_z[c]), (float8)(n->lo_z[c]), r->pos_z) - r->oz;
+    const float8 fz = select((float8)(n->lo_z[c]), (float8)(n->hi_z[c]), r->pos_z) - r->oz;
+    const float8 tnear = gc_max_keep8(nz * r->iz, gc_max_keep8(ny * r->iy, gc_max_keep8(nx * r->ix, r->tmin)));
+    const float8 tfar = gc_min_keep8(fz * r->iz, gc_min_keep8(fy * r->iy, gc_min_keep8(fx * r->ix, t_best)));
+    const float8 entry = tnear - r->margin;
+    *hit = entry <= tfar * GC_BOX_TFAR_SCALE;
+    return entry;
+}
+
+/* Triangle (a, b, c) against the eight rays: lane k of gc_intersect_triangle4 for ray k, the
+ * noise floor included. Returns the `active` rays that hit it with t in [t_min, t_best]. */
+GC_FUNC int8 gc_packet_triangle8(const GcPacketPre8* r, float3 pa, float3 pb, float3 pc, float8 t_best, int8 active,
+                                 float8* t, float8* u, float8* v)
+{
+    const float8 a0 = pa.x - r->ox, a1 = pa.y - r->oy, a2 = pa.z - r->oz;
+    const float8 b0 = pb.x - r->ox, b1 = pb.y - r->oy, b2 = pb.z - r->oz;
+    const float8 c0 = pc.x - r->ox, c1 = pc.y - r->oy, c2 = pc.z - r->oz;
+    const float8 az = gc_axis8(r->kz, a0, a1, a2);
+    const float8 bz = gc_axis8(r->kz, b0, b1, b2);
+    const float8 cz = gc_axis8(r->kz, c0, c1, c2);
+    const float8 ax = gc_axis8(r->kx, a0, a1, a2) - r->sx * az;
+    const float8 ay = gc_axis8(r->ky, a0, a1, a2) - r->sy * az;
+    const float8 bx = gc_axis8(r->kx, b0, b1, b2) - r->sx * bz;
+    const float8 by = gc_axis8(r->ky, b0, b1, b2) - r->sy * bz;
+    const float8 cx = gc_axis8(r->kx, c0, c1, c2) - r->sx * cz;
+    const float8 cy = gc_axis8(r->ky, c0, c1, c2) - r->sy * cz;
+    const float8 eu = cx * by - cy * bx;
+    const float8 ev = ax * cy - ay * cx;
+    const float8 ew = bx * ay - by * ax;
+    const float8 zero = (float8)(0.0f);
+    const int8 inside = active & (((eu >= zero) & (ev >= zero) & (ew >= zero)) | ((eu <= zero) & (ev <= zero) & (ew <= zero)));
+    if (!any(inside)) return inside;
+    const float8 det = eu + ev + ew;
+    const float8 tz = eu * (r->sz * az) + ev * (r->sz * bz) + ew * (r->sz * cz);
+    const float8 rcp = 1.0f / det;
+    *t = tz * rcp;
+    *u = ev * rcp;
+    *v = ew * rcp;
+    const int8 candidate = inside & (*t >= r->tmin) & (*t <= t_best);
+    if (!any(candidate)) return candidate;
+    const float8 s2 = gc_max8(gc_max8(gc_abs_max8(ax, ay), gc_abs_max8(bx, by)), gc_abs_max8(cx, cy));
+    const float8 s3 = gc_max8(gc_max8(gc_abs_max8(a0, b0), fabs(c0)),
+                              gc_max8(gc_max8(gc_abs_max8(a1, b1), fabs(c1)), gc_max8(gc_abs_max8(a2, b2), fabs(c2))));
+    return candidate & (fabs(det) > GC_TRI_DET_EPS * (s2 * (s2 + s3)));
+}
+
+/* Lanes of `take` whose candidate the alpha test cuts away are dropped (gc_alpha.h). */
+#if defined(GC_ALPHA_TEST)
+GC_FUNC int8 gc_packet_solid8(GC_ALPHA_PARAMS, int8 take, uint prim, float8 u, float8 v)
+{
+    int lanes[8];
+    float us[8];
+    float vs[8];
+    vstore8(take, 0, lanes);
+    vstore8(u, 0, us);
+    vstore8(v, 0, vs);
+    for (uint k = 0u; k < 8u; ++k)
+        if (lanes[k] != 0 && !GC_ALPHA_TEST(prim, us[k], vs[k])) lanes[k] = 0;
+    return vload8(0, lanes);
+}
+#endif
+
+/* gc_trace_closest for eight rays. */
+GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
+{
+    GcHits8 best;
+    best.t = (float8)(GC_INFINITY);
+    best.u = (float8)(0.0f);
+    best.v = (float8)(0.0f);
+    best.prim = (uint8)(GC_INVALID);
+    const int8 active = rays.active & gc_packet_valid8(rays);
+    if (!any(active)) return best;
+    const GcPacketPre8 r = gc_packet_precompute8(rays, gc_as_float(GC_BVH_NODE(0u).pad0.x));
+    float8 t_best = rays.tmax;
+    uint stack_ref[GC_BVH8_STACK_SIZE];
+    float stack_entry[GC_BVH8_STACK_SIZE];
+    uint sp = 0u;
+    uint ref = 0u;
+    for (;;) {
+        if ((ref & GC_BVH4_LEAF) == 0u) {
+            GcPacketNode8 n;
+            gc_packet_load_node8(&GC_BVH_NODE(ref), &n);
+            /* Pushed farthest first (insertion by entry), so the nearest is popped next. */
+            const uint base = sp;
+            for (uint c = 0u; c < 8u; ++c) {
+                int8 hit;
+                const float8 entry = gc_packet_box_entry8(&r, &n, c, t_best, &hit);
+                hit &= active;
+                if (!any(hit) || sp >= GC_BVH8_STACK_SIZE) continue;
+                const float e = gc_reduce_min8(select((float8)(GC_AABB_MISS), entry, hit));
+                uint j = sp++;
+                while (j > base && stack_entry[j - 1u] < e) {
+                    stack_entry[j] = stack_entry[j - 1u];
+                    stack_ref[j] = stack_ref[j - 1u];
+                    --j;
+                }
+                stack_entry[j] = e;
+                stack_ref[j] = n.child[c];
+            }
+        } else {
+            const uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
+            const uint end = first + ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
+            for (uint b = first; b < end; ++b) {
+                GC_GLOBAL const GcTriangle4* q = &GC_BVH_TRI(b);
+                float x0[4], y0[4], z0[4], x1[4], y1[4], z1[4], x2[4], y2[4], z2[4];
+                uint prims[4], flags[4];
+                vstore4(q->v0x, 0, x0); vstore4(q->v0y, 0, y0); vstore4(q->v0z, 0, z0);
+                vstore4(q->v1x, 0, x1); vstore4(q->v1y, 0, y1); vstore4(q->v1z, 0, z1);
+                vstore4(q->v2x, 0, x2); vstore4(q->v2y, 0, y2); vstore4(q->v2z, 0, z2);
+                vstore4(q->prim, 0, prims);
+                vstore4(q->flags, 0, flags);
+                for (uint k = 0u; k < 4u; ++k) {
+                    if (prims[k] == GC_INVALID) continue;
+                    float8 t, u, v;
+                    const int8 hit = gc_packet_triangle8(&r, (float3)(x0[k], y0[k], z0[k]), (float3)(x1[k], y1[k], z1[k]),
+                                                         (float3)(x2[k], y2[k], z2[k]), t_best, active, &t, &u, &v);
+                    if (!any(hit)) continue;
+                    const uint8 prim = (uint8)(prims[k]);
+                    int8 take = hit & ((t < t_best) | ((t == t_best) & (prim < best.prim)));
+#if defined(GC_ALPHA_TEST)
+                    if ((flags[k] & GC_TRI_ALPHA_TESTED) != 0u) take = gc_packet_solid8(GC_ALPHA_ARGS, take, prims[k], u, v);
+#else
+                    (void)flags;
+#endif
+                    t_best = select(t_best, t, take);
+                    best.u = select(best.u, u, take);
+                    best.v = select(best.v, v, take);
+                    best.prim = select(best.prim, prim, take);
+                }
+            }
+        }
+        /* The nearest deferred child that some ray's best may not yet rule out. */
+        const float reach = gc_reduce_max8(select((float8)(-GC_AABB_MISS), t_best, active));
+        bool found = false;
+        while (sp > 0u && !found) {
+            --sp;
+            found = gc_aabb_entry_within(stack_entry[sp], reach);
+        }
+        if (!found) break;
+        ref = stack_ref[sp];
+    }
+    best.t = select((float8)(GC_INFINITY), t_best, best.prim != (uint8)(GC_INVALID));
+    return best;
+}
+
+GC_NAMESPACE_END
+
+#endif /* GC_OPENCL && GC_BVH_WIDE8 */
+
+#endif /* GC_PACKET8_H */
