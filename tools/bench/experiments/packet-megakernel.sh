@@ -9,7 +9,10 @@
 #   bench args  default: --device cpu --scene cornell,dragon --no-rays --no-first-image
 #               --no-packet-probe --repeats 3
 # PK_VARIANT picks what runs in packets besides the shading: shading (rays lane by lane),
-# shadow (default: shadow rays as packets), all (path rays too).
+# shadow (default: shadow rays as packets), all (path rays too); and how lanes are filled:
+# those three give each lane its own pixel, pixel and pixel-primary give a work-item one
+# pixel and its lanes eight consecutive samples of it (Mitsuba's layout), with shadow rays as
+# packets, and pixel-primary the camera rays too.
 # GEOCOLD_BENCH and GEOCOLD_CL pick the binaries (default: build/release, else build/bare).
 # Exit status: 0 when the bits match and the timing ran, 1 when the images differ, 2 when a
 # render fails (its messages are shown).
@@ -32,16 +35,21 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp -r "$root/kernels" "$work/a"
 cp -r "$root/kernels" "$work/b"
+pixel=0 primary=0
 case ${PK_VARIANT:-shadow} in
     shading) shadow=0 closest=0 ;;
     shadow) shadow=1 closest=0 ;;
     all) shadow=1 closest=1 ;;
-    *) echo "packet-megakernel: PK_VARIANT must be shading, shadow or all" >&2; exit 2 ;;
+    pixel) shadow=1 closest=0 pixel=1 ;;
+    pixel-primary) shadow=1 closest=0 pixel=1 primary=1 ;;
+    *) echo "packet-megakernel: PK_VARIANT must be shading, shadow, all, pixel or pixel-primary" >&2; exit 2 ;;
 esac
 sed -e "s/^#define PK_PACKET_SHADOW .*/#define PK_PACKET_SHADOW $shadow/" \
     -e "s/^#define PK_PACKET_CLOSEST .*/#define PK_PACKET_CLOSEST $closest/" \
+    -e "s/^#define PK_PIXEL_LANES .*/#define PK_PIXEL_LANES $pixel/" \
+    -e "s/^#define PK_PACKET_PRIMARY .*/#define PK_PACKET_PRIMARY $primary/" \
     "$root/tools/bench/experiments/packet_megakernel.cl" > "$work/b/megakernel.cl"
-echo "variant: ${PK_VARIANT:-shadow} (PK_PACKET_SHADOW $shadow, PK_PACKET_CLOSEST $closest)"
+echo "variant: ${PK_VARIANT:-shadow} (PK_PACKET_SHADOW $shadow, PK_PACKET_CLOSEST $closest, PK_PIXEL_LANES $pixel, PK_PACKET_PRIMARY $primary)"
 
 # Same bits: the experiment's scope is untextured Lambert with triangle emitters or a
 # constant environment, which these two scenes are. --device cpu: the megakernel is the CPU form.

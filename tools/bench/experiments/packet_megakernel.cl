@@ -28,6 +28,9 @@ typedef float8 vf;
 typedef int8 vi;
 typedef uint8 vu;
 
+/* The arguments of GC_SCENE_PARAMS, for the calls of pk_segment. */
+#define GC_SCENE_ARGS_PK GC_BVH_ARGS, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
+
 #define SEL(m, a, b) select((b), (a), (m)) /* lane-wise m ? a : b */
 #define LANES 8u
 
@@ -36,6 +39,12 @@ typedef uint8 vu;
 #endif
 #ifndef PK_PACKET_CLOSEST
 #define PK_PACKET_CLOSEST 0
+#endif
+#ifndef PK_PIXEL_LANES
+#define PK_PIXEL_LANES 0
+#endif
+#ifndef PK_PACKET_PRIMARY
+#define PK_PACKET_PRIMARY 0
 #endif
 
 /* gc_pcg4d with each of its four words a vector of lanes. */
@@ -65,10 +74,10 @@ static void pk_pcg4d(vu* x, vu* y, vu* z, vu* w)
 
 static vf pk_unit(vu bits) { return convert_float8(bits >> 8u) * (1.0f / 16777216.0f); }
 
-static void pk_rand4(vu pixel, uint sample, vu block, uint seed, vf* r0, vf* r1, vf* r2, vf* r3)
+static void pk_rand4(vu pixel, vu sample, vu block, uint seed, vf* r0, vf* r1, vf* r2, vf* r3)
 {
     vu x = pixel;
-    vu y = (vu)(sample);
+    vu y = sample;
     vu z = block;
     vu w = (vu)(seed);
     pk_pcg4d(&x, &y, &z, &w);
@@ -457,6 +466,263 @@ static void pk_closest8(GC_BVH_PARAMS, V3 o, V3 d, vi active, vf* out_t, vf* out
     *out_prim = best_prim;
 }
 
+/* The eight paths of a work-item, lane by lane: what GcPathState and the path's ray carry,
+ * and the pixel and sample each lane belongs to. */
+typedef struct {
+    V3 org, dir, beta, L;
+    vf pdf_last;
+    vi specular, alive;
+    vu pixel, sample, depth;
+} PkPaths;
+
+/* Starts lane k's path: the camera ray of sample `sample` of pixel px (generate.cl). */
+static void pk_start(PkPaths* ps, uint k, const GcRenderParams* params, uint px, uint sample)
+{
+    const float4 jitter = gc_rand4(px, sample, GC_RNG_BLOCK_CAMERA, params->seed);
+    const GcRay ray = gc_camera_ray(params->camera, params->width, params->height, px % params->width,
+                                    px / params->width, jitter.x, jitter.y);
+    ps->org.x[k] = ray.org_tmin.x; ps->org.y[k] = ray.org_tmin.y; ps->org.z[k] = ray.org_tmin.z;
+    ps->dir.x[k] = ray.dir_tmax.x; ps->dir.y[k] = ray.dir_tmax.y; ps->dir.z[k] = ray.dir_tmax.z;
+    ps->pixel[k] = px;
+    ps->sample[k] = sample;
+    ps->depth[k] = 0u;
+    ps->beta.x[k] = 1.0f; ps->beta.y[k] = 1.0f; ps->beta.z[k] = 1.0f;
+    ps->L.x[k] = 0.0f; ps->L.y[k] = 0.0f; ps->L.z[k] = 0.0f;
+    ps->pdf_last[k] = 0.0f;
+    ps->specular[k] = -1;
+    ps->alive[k] = -1;
+}
+
+static PkPaths pk_no_paths(void)
+{
+    PkPaths ps;
+    ps.org = ps.dir = ps.beta = ps.L = v3(0.0f, 0.0f, 0.0f);
+    ps.pdf_last = 0.0f;
+    ps.specular = 0;
+    ps.alive = 0;
+    ps.pixel = 0u;
+    ps.sample = 0u;
+    ps.depth = 0u;
+    return ps;
+}
+
+/* One segment of every alive lane's path: extend.cl, shade.cl and shadow.cl. Returns the lanes
+ * whose path goes on (their ray is the next one); the others' L is final. packet_closest:
+ * trace the path rays as one packet (pk_closest8) instead of lane by lane. */
+static vi pk_segment(const GcRenderParams* params, GC_SCENE_PARAMS, PkPaths* ps, bool packet_closest)
+{
+    const float group_pmf = gc_light_group_pmf(*params);
+    const V3 env = v3(params->env_radiance.x, params->env_radiance.y, params->env_radiance.z);
+    ps->depth = SEL(ps->alive, ps->depth + 1u, ps->depth);
+    const vu bounce = ps->depth - 1u;
+
+    /* extend.cl, per lane */
+    vf t, u, v;
+    vu prim;
+    if (packet_closest) {
+        pk_closest8(GC_BVH_ARGS, ps->org, ps->dir, ps->alive, &t, &u, &v, &prim);
+    } else {
+        float h_t[LANES], h_u[LANES], h_v[LANES];
+        uint h_prim[LANES];
+        float r_ox[LANES], r_oy[LANES], r_oz[LANES], r_dx[LANES], r_dy[LANES], r_dz[LANES];
+        vstore8(ps->org.x, 0, r_ox); vstore8(ps->org.y, 0, r_oy); vstore8(ps->org.z, 0, r_oz);
+        vstore8(ps->dir.x, 0, r_dx); vstore8(ps->dir.y, 0, r_dy); vstore8(ps->dir.z, 0, r_dz);
+        for (uint k = 0u; k < LANES; ++k) {
+            h_t[k] = 0.0f; h_u[k] = 0.0f; h_v[k] = 0.0f; h_prim[k] = GC_INVALID;
+            if (!ps->alive[k]) continue;
+            const GcRay ray = gc_make_ray(make_float3(r_ox[k], r_oy[k], r_oz[k]),
+                                          make_float3(r_dx[k], r_dy[k], r_dz[k]), 0.0f, GC_RAY_UNBOUNDED);
+            const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
+            h_t[k] = hit.t; h_u[k] = hit.u; h_v[k] = hit.v; h_prim[k] = hit.prim;
+        }
+        t = vload8(0, h_t); u = vload8(0, h_u); v = vload8(0, h_v);
+        prim = vload8(0, h_prim);
+    }
+    const vi active = ps->alive & (prim != (vu)(GC_INVALID));
+    ps->L = v3_sel(ps->alive & ~active, v3_add(ps->L, v3_mul(ps->beta, env)), ps->L); /* escaped */
+
+    /* The surface and its material, gathered per lane through private arrays (one
+     * vector load per field; writing lanes of a vector by index spills it each time). */
+    PkStage3 s_n0, s_n1, s_n2, s_ng, s_albedo, s_emission;
+    int s_two[LANES];
+    for (uint k = 0u; k < LANES; ++k) {
+        const GcTriangleAttribs a = GC_ATTRIB(active[k] ? prim[k] : 0u);
+        const GcMaterial m = GC_MATERIAL(a.material);
+        pk_stage(&s_n0, k, a.n0);
+        pk_stage(&s_n1, k, a.n1);
+        pk_stage(&s_n2, k, a.n2);
+        pk_stage(&s_ng, k, a.ng);
+        pk_stage(&s_albedo, k, m.albedo);
+        pk_stage(&s_emission, k, m.emission);
+        s_two[k] = (m.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
+    }
+    const V3 n0 = pk_staged(&s_n0), n1 = pk_staged(&s_n1), n2 = pk_staged(&s_n2), ng = pk_staged(&s_ng);
+    const V3 albedo = pk_staged(&s_albedo), emission = pk_staged(&s_emission);
+    const vi two_sided = vload8(0, s_two);
+    /* gc_surface_at */
+    const vf b0 = 1.0f - u - v;
+    const V3 p = v3_add(ps->org, v3_scale(ps->dir, t));
+    const V3 n = v3_add(v3_add(v3_scale(n0, b0), v3_scale(n1, u)), v3_scale(n2, v));
+    const vf len = v3_length(n);
+    V3 ns = v3_sel(len > 0.0f, v3_scale(n, 1.0f / len), ng);
+    ns = v3_sel(v3_dot(ns, ng) < 0.0f, v3_neg(ns), ns);
+    const V3 wo_world = v3_neg(ps->dir);
+
+    /* Emission seen by this ray. */
+    const vf cos_out = v3_dot(ng, wo_world);
+    const vi emits = active & v3_any_positive(emission) & pk_emits_toward(two_sided, cos_out);
+    if (any(emits)) {
+        vf w = 1.0f;
+        if (params->num_emitters > 0u)
+            w = SEL(ps->specular, w,
+                    pk_power_heuristic(ps->pdf_last, group_pmf * pk_light_pdf_w(emission, params->emitter_power, t, cos_out)));
+        ps->L = v3_sel(emits, v3_add(ps->L, v3_scale(v3_mul(ps->beta, emission), w)), ps->L);
+    }
+    const vi cont = active & (ps->depth < (vu)(params->max_depth));
+    vi survive = 0;
+    if (any(cont)) {
+        const F3 frame = pk_frame(ns);
+        const V3 wo = pk_to_local(frame, wo_world);
+
+        /* Next-event estimation to one emitter (the emitter group is the only one in scope). */
+        vi shadow = 0;
+        V3 shadow_org, shadow_dir, contribution;
+        vf shadow_len = 0.0f;
+        if (group_pmf > 0.0f) {
+            vf r0, r1, r2, r3;
+            pk_rand4(ps->pixel, ps->sample, 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + GC_RNG_BLOCK_LIGHT, params->seed,
+                     &r0, &r1, &r2, &r3);
+            const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
+            const vf ug = r0 * gc_float(groups);
+            vu group = convert_uint8_rtz(ug);
+            group = SEL(group >= groups, (vu)(groups - 1u), group);
+            const vf ue = fmin(ug - convert_float8(group), 0.99999994f);
+            PkStage3 s_v0, s_v1, s_v2, s_lng, s_le;
+            int s_ltwo[LANES];
+            for (uint k = 0u; k < LANES; ++k) {
+                const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params->num_emitters, cont[k] ? ue[k] : 0.0f));
+                const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
+                const GcMaterial lm = GC_MATERIAL(la.material);
+                pk_stage(&s_v0, k, e.v0);
+                pk_stage(&s_v1, k, e.v1);
+                pk_stage(&s_v2, k, e.v2);
+                pk_stage(&s_lng, k, la.ng);
+                pk_stage(&s_le, k, lm.emission);
+                s_ltwo[k] = (lm.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
+            }
+            const V3 v0 = pk_staged(&s_v0), v1 = pk_staged(&s_v1), v2 = pk_staged(&s_v2);
+            const V3 lng = pk_staged(&s_lng), le = pk_staged(&s_le);
+            const vi l_two_sided = vload8(0, s_ltwo);
+            /* gc_sample_uniform_triangle */
+            const vi lower = r1 < r2;
+            const vf bb0 = SEL(lower, 0.5f * r1, r1 - 0.5f * r2);
+            const vf bb1 = SEL(lower, r2 - 0.5f * r1, 0.5f * r2);
+            const vf bb2 = 1.0f - bb0 - bb1;
+            const V3 p_light = v3_add(v3_add(v3_scale(v0, bb0), v3_scale(v1, bb1)), v3_scale(v2, bb2));
+            const V3 to_light = v3_sub(p_light, p);
+            const vf dist = v3_length(to_light);
+            const V3 wi_world = v3_div(to_light, dist);
+            const vf cos_light = v3_dot(lng, v3_neg(wi_world));
+            const vi sampled = cont & (dist > 0.0f) & pk_emits_toward(l_two_sided, cos_light);
+            const vf pdf_w = group_pmf * pk_light_pdf_w(le, params->emitter_power, dist, cos_light);
+            const vi usable = sampled & (pdf_w > 0.0f);
+            if (any(usable)) {
+                const V3 target = pk_offset_ray_origin(p_light, pk_side_normal(lng, v3_neg(wi_world)));
+                const V3 wi = pk_to_local(frame, wi_world);
+                const V3 f = pk_lambert_eval(albedo, wo, wi);
+                const vf w = pk_power_heuristic(pdf_w, pk_lambert_pdf(wo, wi));
+                contribution = v3_mul(v3_scale(v3_mul(ps->beta, f), fabs(wi.z) * w / pdf_w), le);
+                shadow = usable & v3_any_positive(contribution);
+                shadow_org = pk_offset_ray_origin(p, pk_side_normal(ng, wi_world));
+                const V3 d = v3_sub(target, shadow_org);
+                shadow_len = v3_length(d);
+                shadow_dir = v3_div(d, shadow_len);
+            }
+        }
+#if PK_PACKET_SHADOW
+        if (any(shadow)) shadow &= ~pk_occluded8(GC_BVH_ARGS, shadow_org, shadow_dir, shadow_len, shadow);
+#else
+        for (uint k = 0u; k < LANES; ++k) {
+            if (!shadow[k]) continue;
+            const GcRay ray = gc_make_ray(make_float3(shadow_org.x[k], shadow_org.y[k], shadow_org.z[k]),
+                                          make_float3(shadow_dir.x[k], shadow_dir.y[k], shadow_dir.z[k]), 0.0f,
+                                          shadow_len[k]);
+            if (gc_trace_any(GC_BVH_ARGS, ray)) shadow[k] = 0;
+        }
+#endif
+
+        /* Continue the path by sampling the BSDF (Lambert). */
+        vf r0, r1, r2, r3;
+        pk_rand4(ps->pixel, ps->sample, 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + GC_RNG_BLOCK_BSDF, params->seed, &r0,
+                 &r1, &r2, &r3);
+        const vf side = SEL(wo.z < 0.0f, (vf)(-1.0f), (vf)(1.0f));
+        const vi wo_up = wo.z * side > 0.0f;
+        const V3 wi_up = pk_cosine_hemisphere(r1, r2);
+        const V3 wi = v3(wi_up.x, wi_up.y, wi_up.z * side);
+        const V3 f = pk_lambert_eval(albedo, wo, wi);
+        const vf pdf = pk_lambert_pdf(wo, wi);
+        const vi sampled = wo_up & (pdf > 0.0f);
+        const V3 weight = v3_scale(f, fabs(wi.z) / pdf);
+        /* The shadow ray's light joins the radiance after the vertex, as in megakernel.cl. */
+        ps->L = v3_sel(shadow, v3_add(ps->L, contribution), ps->L);
+        ps->beta = v3_sel(sampled, v3_mul(ps->beta, weight), v3(0.0f, 0.0f, 0.0f));
+        survive = cont & sampled & v3_any_positive(ps->beta);
+        const vi roulette = survive & (ps->depth >= (vu)(params->rr_depth));
+        if (any(roulette)) {
+            vf q0, q1, q2, q3;
+            pk_rand4(ps->pixel, ps->sample, 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + GC_RNG_BLOCK_ROULETTE, params->seed,
+                     &q0, &q1, &q2, &q3);
+            const vf keep = fmin(fmax(ps->beta.x, fmax(ps->beta.y, ps->beta.z)) * 1.0f, 0.95f);
+            survive = survive & ~(roulette & (q0 >= keep));
+            ps->beta = v3_sel(roulette, v3_div(ps->beta, keep), ps->beta);
+        }
+        const V3 wi_w = pk_to_world(frame, wi);
+        ps->org = v3_sel(survive, pk_offset_ray_origin(p, pk_side_normal(ng, wi_w)), ps->org);
+        ps->dir = v3_sel(survive, wi_w, ps->dir);
+        ps->pdf_last = SEL(survive, pdf, ps->pdf_last);
+        ps->specular = ps->specular & ~survive;
+    }
+    return survive;
+}
+
+#if PK_PIXEL_LANES
+/* Mitsuba's layout: a work-item renders one pixel, its lanes eight consecutive samples of it
+ * in lock step (no refill), so the camera rays of a packet leave through one pixel and their
+ * first hits and first shadow rays start from one small patch. PK_PACKET_PRIMARY traces the
+ * camera rays as one packet. Each pixel's samples reach the film in sample order. */
+__kernel void path_megakernel(const GcRenderParams params,
+                              GC_SCENE_PARAMS,
+                              __global float4* film,
+                              __global float4* film_squares)
+{
+    const uint slot = get_global_id(0);
+    if (slot >= params.pixel_count) return;
+    const uint px = params.pixel_offset + slot;
+    float4 sum = film[px];
+    float4 squares = film_squares[px];
+    for (uint s0 = 0u; s0 < params.samples_in_pass; s0 += LANES) {
+        const uint lanes = min(LANES, params.samples_in_pass - s0);
+        PkPaths ps = pk_no_paths();
+        for (uint k = 0u; k < lanes; ++k) pk_start(&ps, k, &params, px, params.sample_index + s0 + k);
+        V3 done = v3(0.0f, 0.0f, 0.0f);
+        bool camera_rays = true;
+        while (any(ps.alive)) {
+            const vi was = ps.alive;
+            const vi survive = pk_segment(&params, GC_SCENE_ARGS_PK, &ps, camera_rays ? PK_PACKET_PRIMARY : PK_PACKET_CLOSEST);
+            camera_rays = false;
+            done = v3_sel(was & ~survive, ps.L, done);
+            ps.alive = survive;
+        }
+        for (uint k = 0u; k < lanes; ++k) {
+            const float3 value = gc_film_value(make_float3(done.x[k], done.y[k], done.z[k]));
+            sum += (float4)(value, 1.0f);
+            squares += (float4)(value * value, 0.0f);
+        }
+    }
+    film[px] = sum;
+    film_squares[px] = squares;
+}
+#else
 /* Pixels per active work-item: its lanes take them one after the other, a new path
  * starting in a lane as soon as the lane's path ends (one sample of every pixel per round, so
  * a pixel's samples still reach the film in sample order). */
@@ -470,220 +736,29 @@ __kernel void path_megakernel(const GcRenderParams params,
     const uint slot0 = get_global_id(0);
     if ((slot0 % GROUP) != 0u || slot0 >= params.pixel_count) return;
     const uint group_end = min(slot0 + GROUP, params.pixel_count);
-    const float group_pmf = gc_light_group_pmf(params);
-    const V3 env = v3(params.env_radiance.x, params.env_radiance.y, params.env_radiance.z);
-
     for (uint s = 0u; s < params.samples_in_pass; ++s) {
         const uint sample = params.sample_index + s;
         uint next = slot0;
-        vu pixel = 0u;
-        vu depth = 0u;
-        V3 org, dir;
-        V3 beta = v3(0.0f, 0.0f, 0.0f);
-        V3 L = v3(0.0f, 0.0f, 0.0f);
-        vf pdf_last = 0.0f;
-        vi specular = 0;
-        vi alive = 0;
+        PkPaths ps = pk_no_paths();
         for (;;) {
             /* Refill idle lanes with the group's next pixels (generate.cl). */
             for (uint k = 0u; k < LANES && next < group_end; ++k) {
-                if (alive[k]) continue;
-                const uint px = params.pixel_offset + next;
+                if (ps.alive[k]) continue;
+                pk_start(&ps, k, &params, params.pixel_offset + next, sample);
                 ++next;
-                const float4 jitter = gc_rand4(px, sample, GC_RNG_BLOCK_CAMERA, params.seed);
-                const GcRay ray = gc_camera_ray(params.camera, params.width, params.height, px % params.width,
-                                                px / params.width, jitter.x, jitter.y);
-                org.x[k] = ray.org_tmin.x; org.y[k] = ray.org_tmin.y; org.z[k] = ray.org_tmin.z;
-                dir.x[k] = ray.dir_tmax.x; dir.y[k] = ray.dir_tmax.y; dir.z[k] = ray.dir_tmax.z;
-                pixel[k] = px;
-                depth[k] = 0u;
-                beta.x[k] = 1.0f; beta.y[k] = 1.0f; beta.z[k] = 1.0f;
-                L.x[k] = 0.0f; L.y[k] = 0.0f; L.z[k] = 0.0f;
-                pdf_last[k] = 0.0f;
-                specular[k] = -1;
-                alive[k] = -1;
             }
-            if (!any(alive)) break;
-            depth = SEL(alive, depth + 1u, depth);
-            const vu bounce = depth - 1u;
-
-            /* extend.cl, per lane */
-            vf t, u, v;
-            vu prim;
-#if PK_PACKET_CLOSEST
-            pk_closest8(GC_BVH_ARGS, org, dir, alive, &t, &u, &v, &prim);
-#else
-            {
-                float h_t[LANES], h_u[LANES], h_v[LANES];
-                uint h_prim[LANES];
-                float r_ox[LANES], r_oy[LANES], r_oz[LANES], r_dx[LANES], r_dy[LANES], r_dz[LANES];
-                vstore8(org.x, 0, r_ox); vstore8(org.y, 0, r_oy); vstore8(org.z, 0, r_oz);
-                vstore8(dir.x, 0, r_dx); vstore8(dir.y, 0, r_dy); vstore8(dir.z, 0, r_dz);
-                for (uint k = 0u; k < LANES; ++k) {
-                    h_t[k] = 0.0f; h_u[k] = 0.0f; h_v[k] = 0.0f; h_prim[k] = GC_INVALID;
-                    if (!alive[k]) continue;
-                    const GcRay ray = gc_make_ray(make_float3(r_ox[k], r_oy[k], r_oz[k]),
-                                                  make_float3(r_dx[k], r_dy[k], r_dz[k]), 0.0f, GC_RAY_UNBOUNDED);
-                    const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
-                    h_t[k] = hit.t; h_u[k] = hit.u; h_v[k] = hit.v; h_prim[k] = hit.prim;
-                }
-                t = vload8(0, h_t); u = vload8(0, h_u); v = vload8(0, h_v);
-                prim = vload8(0, h_prim);
-            }
-#endif
-            const vi active = alive & (prim != (vu)(GC_INVALID));
-            L = v3_sel(alive & ~active, v3_add(L, v3_mul(beta, env)), L); /* escaped */
-
-            /* The surface and its material, gathered per lane through private arrays (one
-             * vector load per field; writing lanes of a vector by index spills it each time). */
-            PkStage3 s_n0, s_n1, s_n2, s_ng, s_albedo, s_emission;
-            int s_two[LANES];
-            for (uint k = 0u; k < LANES; ++k) {
-                const GcTriangleAttribs a = GC_ATTRIB(active[k] ? prim[k] : 0u);
-                const GcMaterial m = GC_MATERIAL(a.material);
-                pk_stage(&s_n0, k, a.n0);
-                pk_stage(&s_n1, k, a.n1);
-                pk_stage(&s_n2, k, a.n2);
-                pk_stage(&s_ng, k, a.ng);
-                pk_stage(&s_albedo, k, m.albedo);
-                pk_stage(&s_emission, k, m.emission);
-                s_two[k] = (m.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
-            }
-            const V3 n0 = pk_staged(&s_n0), n1 = pk_staged(&s_n1), n2 = pk_staged(&s_n2), ng = pk_staged(&s_ng);
-            const V3 albedo = pk_staged(&s_albedo), emission = pk_staged(&s_emission);
-            const vi two_sided = vload8(0, s_two);
-            /* gc_surface_at */
-            const vf b0 = 1.0f - u - v;
-            const V3 p = v3_add(org, v3_scale(dir, t));
-            const V3 n = v3_add(v3_add(v3_scale(n0, b0), v3_scale(n1, u)), v3_scale(n2, v));
-            const vf len = v3_length(n);
-            V3 ns = v3_sel(len > 0.0f, v3_scale(n, 1.0f / len), ng);
-            ns = v3_sel(v3_dot(ns, ng) < 0.0f, v3_neg(ns), ns);
-            const V3 wo_world = v3_neg(dir);
-
-            /* Emission seen by this ray. */
-            const vf cos_out = v3_dot(ng, wo_world);
-            const vi emits = active & v3_any_positive(emission) & pk_emits_toward(two_sided, cos_out);
-            if (any(emits)) {
-                vf w = 1.0f;
-                if (params.num_emitters > 0u)
-                    w = SEL(specular, w,
-                            pk_power_heuristic(pdf_last, group_pmf * pk_light_pdf_w(emission, params.emitter_power, t, cos_out)));
-                L = v3_sel(emits, v3_add(L, v3_scale(v3_mul(beta, emission), w)), L);
-            }
-            const vi cont = active & (depth < (vu)(params.max_depth));
-            vi survive = 0;
-            if (any(cont)) {
-                const F3 frame = pk_frame(ns);
-                const V3 wo = pk_to_local(frame, wo_world);
-
-                /* Next-event estimation to one emitter (the emitter group is the only one in scope). */
-                vi shadow = 0;
-                V3 shadow_org, shadow_dir, contribution;
-                vf shadow_len = 0.0f;
-                if (group_pmf > 0.0f) {
-                    vf r0, r1, r2, r3;
-                    pk_rand4(pixel, sample, 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + GC_RNG_BLOCK_LIGHT, params.seed,
-                             &r0, &r1, &r2, &r3);
-                    const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
-                    const vf ug = r0 * gc_float(groups);
-                    vu group = convert_uint8_rtz(ug);
-                    group = SEL(group >= groups, (vu)(groups - 1u), group);
-                    const vf ue = fmin(ug - convert_float8(group), 0.99999994f);
-                    PkStage3 s_v0, s_v1, s_v2, s_lng, s_le;
-                    int s_ltwo[LANES];
-                    for (uint k = 0u; k < LANES; ++k) {
-                        const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params.num_emitters, cont[k] ? ue[k] : 0.0f));
-                        const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
-                        const GcMaterial lm = GC_MATERIAL(la.material);
-                        pk_stage(&s_v0, k, e.v0);
-                        pk_stage(&s_v1, k, e.v1);
-                        pk_stage(&s_v2, k, e.v2);
-                        pk_stage(&s_lng, k, la.ng);
-                        pk_stage(&s_le, k, lm.emission);
-                        s_ltwo[k] = (lm.flags & GC_MATF_TWO_SIDED) != 0u ? -1 : 0;
-                    }
-                    const V3 v0 = pk_staged(&s_v0), v1 = pk_staged(&s_v1), v2 = pk_staged(&s_v2);
-                    const V3 lng = pk_staged(&s_lng), le = pk_staged(&s_le);
-                    const vi l_two_sided = vload8(0, s_ltwo);
-                    /* gc_sample_uniform_triangle */
-                    const vi lower = r1 < r2;
-                    const vf bb0 = SEL(lower, 0.5f * r1, r1 - 0.5f * r2);
-                    const vf bb1 = SEL(lower, r2 - 0.5f * r1, 0.5f * r2);
-                    const vf bb2 = 1.0f - bb0 - bb1;
-                    const V3 p_light = v3_add(v3_add(v3_scale(v0, bb0), v3_scale(v1, bb1)), v3_scale(v2, bb2));
-                    const V3 to_light = v3_sub(p_light, p);
-                    const vf dist = v3_length(to_light);
-                    const V3 wi_world = v3_div(to_light, dist);
-                    const vf cos_light = v3_dot(lng, v3_neg(wi_world));
-                    const vi sampled = cont & (dist > 0.0f) & pk_emits_toward(l_two_sided, cos_light);
-                    const vf pdf_w = group_pmf * pk_light_pdf_w(le, params.emitter_power, dist, cos_light);
-                    const vi usable = sampled & (pdf_w > 0.0f);
-                    if (any(usable)) {
-                        const V3 target = pk_offset_ray_origin(p_light, pk_side_normal(lng, v3_neg(wi_world)));
-                        const V3 wi = pk_to_local(frame, wi_world);
-                        const V3 f = pk_lambert_eval(albedo, wo, wi);
-                        const vf w = pk_power_heuristic(pdf_w, pk_lambert_pdf(wo, wi));
-                        contribution = v3_mul(v3_scale(v3_mul(beta, f), fabs(wi.z) * w / pdf_w), le);
-                        shadow = usable & v3_any_positive(contribution);
-                        shadow_org = pk_offset_ray_origin(p, pk_side_normal(ng, wi_world));
-                        const V3 d = v3_sub(target, shadow_org);
-                        shadow_len = v3_length(d);
-                        shadow_dir = v3_div(d, shadow_len);
-                    }
-                }
-#if PK_PACKET_SHADOW
-                if (any(shadow)) shadow &= ~pk_occluded8(GC_BVH_ARGS, shadow_org, shadow_dir, shadow_len, shadow);
-#else
-                for (uint k = 0u; k < LANES; ++k) {
-                    if (!shadow[k]) continue;
-                    const GcRay ray = gc_make_ray(make_float3(shadow_org.x[k], shadow_org.y[k], shadow_org.z[k]),
-                                                  make_float3(shadow_dir.x[k], shadow_dir.y[k], shadow_dir.z[k]), 0.0f,
-                                                  shadow_len[k]);
-                    if (gc_trace_any(GC_BVH_ARGS, ray)) shadow[k] = 0;
-                }
-#endif
-
-                /* Continue the path by sampling the BSDF (Lambert). */
-                vf r0, r1, r2, r3;
-                pk_rand4(pixel, sample, 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + GC_RNG_BLOCK_BSDF, params.seed, &r0,
-                         &r1, &r2, &r3);
-                const vf side = SEL(wo.z < 0.0f, (vf)(-1.0f), (vf)(1.0f));
-                const vi wo_up = wo.z * side > 0.0f;
-                const V3 wi_up = pk_cosine_hemisphere(r1, r2);
-                const V3 wi = v3(wi_up.x, wi_up.y, wi_up.z * side);
-                const V3 f = pk_lambert_eval(albedo, wo, wi);
-                const vf pdf = pk_lambert_pdf(wo, wi);
-                const vi sampled = wo_up & (pdf > 0.0f);
-                const V3 weight = v3_scale(f, fabs(wi.z) / pdf);
-                /* The shadow ray's light joins the radiance after the vertex, as in megakernel.cl. */
-                L = v3_sel(shadow, v3_add(L, contribution), L);
-                beta = v3_sel(sampled, v3_mul(beta, weight), v3(0.0f, 0.0f, 0.0f));
-                survive = cont & sampled & v3_any_positive(beta);
-                const vi roulette = survive & (depth >= (vu)(params.rr_depth));
-                if (any(roulette)) {
-                    vf q0, q1, q2, q3;
-                    pk_rand4(pixel, sample, 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + GC_RNG_BLOCK_ROULETTE, params.seed,
-                             &q0, &q1, &q2, &q3);
-                    const vf keep = fmin(fmax(beta.x, fmax(beta.y, beta.z)) * 1.0f, 0.95f);
-                    survive = survive & ~(roulette & (q0 >= keep));
-                    beta = v3_sel(roulette, v3_div(beta, keep), beta);
-                }
-                const V3 wi_w = pk_to_world(frame, wi);
-                org = v3_sel(survive, pk_offset_ray_origin(p, pk_side_normal(ng, wi_w)), org);
-                dir = v3_sel(survive, wi_w, dir);
-                pdf_last = SEL(survive, pdf, pdf_last);
-                specular = specular & ~survive;
-            }
+            if (!any(ps.alive)) break;
+            const vi survive = pk_segment(&params, GC_SCENE_ARGS_PK, &ps, PK_PACKET_CLOSEST);
             /* accumulate.cl for the lanes whose path ended */
-            const vi ended = alive & ~survive;
+            const vi ended = ps.alive & ~survive;
             for (uint k = 0u; k < LANES; ++k) {
                 if (!ended[k]) continue;
-                const float3 value = gc_film_value(make_float3(L.x[k], L.y[k], L.z[k]));
-                film[pixel[k]] += (float4)(value, 1.0f);
-                film_squares[pixel[k]] += (float4)(value * value, 0.0f);
+                const float3 value = gc_film_value(make_float3(ps.L.x[k], ps.L.y[k], ps.L.z[k]));
+                film[ps.pixel[k]] += (float4)(value, 1.0f);
+                film_squares[ps.pixel[k]] += (float4)(value * value, 0.0f);
             }
-            alive = survive;
+            ps.alive = survive;
         }
     }
 }
+#endif
