@@ -210,6 +210,9 @@ TEST(DeviceTraversal, PacketsOfEightEqualSingleRays)
     }
     std::vector<dev::GcRay> scattered;
     for (const Ray& r : random_rays(soup, 8000, 4321)) scattered.push_back(to_device(r));
+    // Every other one a segment: its closest hit lies before its end or is a miss.
+    const float reach = 0.3f * length(soup.bounds().diagonal());
+    for (std::size_t i = 1; i < scattered.size(); i += 2) scattered[i].dir_tmax.w = reach;
     // Coherent: a pixel's camera rays into the Cornell box with the sphere (eight jittered
     // directions per pixel of a 40x40 view, as the megakernel's packets), every fifth packet a
     // segment from t 0.5 to 3 instead of a whole ray.
