@@ -63,40 +63,33 @@ __kernel void path_megakernel(const GcRenderParams params,
     float4 sum = film[pixel];
     float4 squares = film_squares[pixel];
 #if defined(GC_HAVE_PACKET8)
-    /* Up to eight samples at a time: their camera rays, which leave through this pixel, are
-     * traced as one packet (gc_packet8.h), then each path goes on alone, in sample order. */
-    for (uint s0 = 0u; s0 < params.samples_in_pass; s0 += 8u) {
-        const uint lanes = min(8u, params.samples_in_pass - s0);
+    /* The pass's samples in groups of at most eight, as even as they can be made: each
+     * group's camera rays, which leave through this pixel, are traced as one packet
+     * (gc_packet8.h) when it has enough of them, then each path goes on alone, in sample
+     * order. */
+    const uint samples = params.samples_in_pass;
+    const uint groups = (samples + 7u) / 8u;
+    for (uint g = 0u, s0 = 0u; g < groups; ++g) {
+        const uint lanes = samples / groups + (g < samples % groups ? 1u : 0u);
         GcRay cam[8];
-        float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8];
-        int active[8];
-        for (uint k = 0u; k < 8u; ++k) {
-            /* Lanes past the pass's samples repeat the last ray, inactive. */
-            cam[k] = camera_ray(&params, pixel, params.sample_index + s0 + min(k, lanes - 1u));
-            ox[k] = cam[k].org_tmin.x; oy[k] = cam[k].org_tmin.y; oz[k] = cam[k].org_tmin.z;
-            dx[k] = cam[k].dir_tmax.x; dy[k] = cam[k].dir_tmax.y; dz[k] = cam[k].dir_tmax.z;
-            active[k] = k < lanes ? -1 : 0;
+        GcHit hit[8];
+        for (uint k = 0u; k < lanes; ++k) cam[k] = camera_ray(&params, pixel, params.sample_index + s0 + k);
+        if (lanes >= GC_PACKET_MIN_LANES) {
+            int active[8];
+            for (uint k = 0u; k < 8u; ++k) {
+                active[k] = k < lanes;
+                if (k >= lanes) cam[k] = cam[lanes - 1u]; /* idle lanes: a copy, never traced */
+            }
+            gc_packet_closest_hits8(GC_BVH_ARGS, cam, active, hit);
+        } else {
+            for (uint k = 0u; k < lanes; ++k) hit[k] = gc_trace_closest(GC_BVH_ARGS, cam[k]);
         }
-        GcRays8 rays;
-        rays.ox = vload8(0, ox); rays.oy = vload8(0, oy); rays.oz = vload8(0, oz);
-        rays.dx = vload8(0, dx); rays.dy = vload8(0, dy); rays.dz = vload8(0, dz);
-        rays.tmin = (float8)(0.0f);
-        rays.tmax = (float8)(GC_RAY_UNBOUNDED);
-        rays.active = vload8(0, active);
-        const GcHits8 hits = gc_trace_closest8(GC_BVH_ARGS, rays);
-        float ht[8], hu[8], hv[8];
-        uint hp[8];
-        vstore8(hits.t, 0, ht); vstore8(hits.u, 0, hu); vstore8(hits.v, 0, hv); vstore8(hits.prim, 0, hp);
         for (uint k = 0u; k < lanes; ++k) {
-            GcHit hit;
-            hit.t = ht[k];
-            hit.u = hu[k];
-            hit.v = hv[k];
-            hit.prim = hp[k];
-            const float3 value = trace_path(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k, cam[k], hit);
+            const float3 value = trace_path(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k, cam[k], hit[k]);
             sum += (float4)(value, 1.0f);
             squares += (float4)(value * value, 0.0f);
         }
+        s0 += lanes;
     }
 #else
     for (uint s = 0u; s < params.samples_in_pass; ++s) {

@@ -41,31 +41,14 @@ __kernel void trace_closest8(__global const GcTraversalNode* nodes,
 {
     const uint i = get_global_id(0);
     if (i >= packets) return;
-    float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8], tmin[8], tmax[8];
+    GcRay ray[8];
     int on[8];
+    GcHit hit[8];
     for (uint k = 0u; k < 8u; ++k) {
-        const GcRay r = rays[8u * i + k];
-        ox[k] = r.org_tmin.x; oy[k] = r.org_tmin.y; oz[k] = r.org_tmin.z; tmin[k] = r.org_tmin.w;
-        dx[k] = r.dir_tmax.x; dy[k] = r.dir_tmax.y; dz[k] = r.dir_tmax.z; tmax[k] = r.dir_tmax.w;
-        on[k] = active[8u * i + k] != 0 ? -1 : 0;
+        ray[k] = rays[8u * i + k];
+        on[k] = active[8u * i + k];
     }
-    GcRays8 packet;
-    packet.ox = vload8(0, ox); packet.oy = vload8(0, oy); packet.oz = vload8(0, oz);
-    packet.dx = vload8(0, dx); packet.dy = vload8(0, dy); packet.dz = vload8(0, dz);
-    packet.tmin = vload8(0, tmin);
-    packet.tmax = vload8(0, tmax);
-    packet.active = vload8(0, on);
-    const GcHits8 h = gc_trace_closest8(nodes, tris, packet);
-    float t[8], u[8], v[8];
-    uint prim[8];
-    vstore8(h.t, 0, t); vstore8(h.u, 0, u); vstore8(h.v, 0, v); vstore8(h.prim, 0, prim);
-    for (uint k = 0u; k < 8u; ++k) {
-        GcHit hit;
-        hit.t = t[k];
-        hit.u = u[k];
-        hit.v = v[k];
-        hit.prim = prim[k];
-        hits[8u * i + k] = hit;
-    }
+    gc_packet_closest_hits8(nodes, tris, ray, on, hit);
+    for (uint k = 0u; k < 8u; ++k) hits[8u * i + k] = hit[k];
 }
 #endif
