@@ -52,6 +52,20 @@ static float3 trace_path(GC_SCENE_PARAMS, const GcRenderParams* params, uint pix
     return gc_film_value(path.radiance.xyz);
 }
 
+/* A sample from its camera ray on: trace_path after the camera ray's closest hit. */
+static float3 sample_value(GC_SCENE_PARAMS, const GcRenderParams* params, uint pixel, uint sample)
+{
+    const GcRay ray = camera_ray(params, pixel, sample);
+    return trace_path(GC_SCENE_ARGS, params, pixel, sample, ray, gc_trace_closest(GC_BVH_ARGS, ray));
+}
+
+/* accumulate.cl: one sample's value into its pixel's sums. */
+static void accumulate(float4* sum, float4* squares, float3 value)
+{
+    *sum += (float4)(value, 1.0f);
+    *squares += (float4)(value * value, 0.0f);
+}
+
 __kernel void path_megakernel(const GcRenderParams params,
                               GC_SCENE_PARAMS,
                               __global float4* film,
@@ -71,34 +85,28 @@ __kernel void path_megakernel(const GcRenderParams params,
     const uint groups = (samples + 7u) / 8u;
     for (uint g = 0u, s0 = 0u; g < groups; ++g) {
         const uint lanes = samples / groups + (g < samples % groups ? 1u : 0u);
-        GcRay cam[8];
-        GcHit hit[8];
-        for (uint k = 0u; k < lanes; ++k) cam[k] = camera_ray(&params, pixel, params.sample_index + s0 + k);
-        if (lanes >= GC_PACKET_MIN_LANES) {
+        if (lanes < GC_PACKET_MIN_LANES) {
+            for (uint k = 0u; k < lanes; ++k)
+                accumulate(&sum, &squares, sample_value(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k));
+        } else {
+            GcRay cam[8];
+            GcHit hit[8];
             int active[8];
             for (uint k = 0u; k < 8u; ++k) {
                 active[k] = k < lanes;
-                if (k >= lanes) cam[k] = cam[lanes - 1u]; /* idle lanes: a copy, never traced */
+                /* Idle lanes hold a copy of the last ray, never traced. */
+                cam[k] = k < lanes ? camera_ray(&params, pixel, params.sample_index + s0 + k) : cam[lanes - 1u];
             }
             gc_packet_closest_hits8(GC_BVH_ARGS, cam, active, hit);
-        } else {
-            for (uint k = 0u; k < lanes; ++k) hit[k] = gc_trace_closest(GC_BVH_ARGS, cam[k]);
-        }
-        for (uint k = 0u; k < lanes; ++k) {
-            const float3 value = trace_path(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k, cam[k], hit[k]);
-            sum += (float4)(value, 1.0f);
-            squares += (float4)(value * value, 0.0f);
+            for (uint k = 0u; k < lanes; ++k)
+                accumulate(&sum, &squares,
+                           trace_path(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k, cam[k], hit[k]));
         }
         s0 += lanes;
     }
 #else
-    for (uint s = 0u; s < params.samples_in_pass; ++s) {
-        const uint sample = params.sample_index + s;
-        const GcRay ray = camera_ray(&params, pixel, sample);
-        const float3 value = trace_path(GC_SCENE_ARGS, &params, pixel, sample, ray, gc_trace_closest(GC_BVH_ARGS, ray));
-        sum += (float4)(value, 1.0f);
-        squares += (float4)(value * value, 0.0f);
-    }
+    for (uint s = 0u; s < params.samples_in_pass; ++s)
+        accumulate(&sum, &squares, sample_value(GC_SCENE_ARGS, &params, pixel, params.sample_index + s));
 #endif
     film[pixel] = sum;
     film_squares[pixel] = squares;
