@@ -12,13 +12,15 @@
  * wavefront's on the same device (tests/validation/determinism_test.cpp checks it).
  *
  * Camera rays in packets: on the BVH8 (CPUs with 8-wide SIMD) a work-item traces the camera
- * rays of up to eight of its pixel's samples as one packet (gc_packet8.h), then follows each
- * path alone. The rays leave through one pixel, so one traversal serves all of them; the
- * hits are the single-ray traversal's bits. Against one camera ray at a time, path samples
- * per second, H200 host's 16 PoCL cores / 2-core VM: bunny 1.21x / 1.49x, dragon 1.18x /
- * 1.34x, Cornell box 1.11x / 1.00x (its camera rays are one of about nine rays per sample),
- * 5.2M triangles 1.05x / 0.98x. Shadow rays stay single: eight paths in lock step, to make
- * packets of their shadow rays, lost (tools/bench/experiments/README.md).
+ * rays of six to eight of its pixel's samples as one packet (gc_packet8.h), then follows each
+ * path alone; fewer go one by one, for which the packet is slower. The rays leave through
+ * one pixel, so one traversal serves all of them; the hits are the single-ray traversal's
+ * bits. Against one camera ray at a time, path samples per second with the planner's
+ * passes, H200 host's 16 PoCL cores / 2-core VM (two runs each): bunny 1.21-1.27x /
+ * 1.32-1.49x, dragon 1.18-1.19x / 1.32-1.34x, Cornell box 1.00-1.11x / 1.00x (its camera
+ * rays are one of about nine rays per sample), 5.2M triangles 1.05-1.11x / 0.98-1.04x.
+ * Shadow rays stay single: eight paths in lock step, to make packets of their shadow rays,
+ * lost (tools/bench/experiments/README.md).
  */
 #include "gc_alpha.h"
 #include "gc_traverse.h"
