@@ -143,6 +143,21 @@ GC_FUNC void gc_packet_load_node8(GC_GLOBAL const GcBvh8Node* n, GcPacketNode8* 
     vstore8((uint8)(n->child0, n->child1), 0, out->child);
 }
 
+/* A leaf block's four triangles, stored for scalar reads of one triangle at a time. */
+typedef struct {
+    float x0[4], y0[4], z0[4], x1[4], y1[4], z1[4], x2[4], y2[4], z2[4];
+    uint prim[4], flags[4];
+} GcPacketBlock4;
+
+GC_FUNC void gc_packet_load_block4(GC_GLOBAL const GcTriangle4* q, GcPacketBlock4* out)
+{
+    vstore4(q->v0x, 0, out->x0); vstore4(q->v0y, 0, out->y0); vstore4(q->v0z, 0, out->z0);
+    vstore4(q->v1x, 0, out->x1); vstore4(q->v1y, 0, out->y1); vstore4(q->v1z, 0, out->z1);
+    vstore4(q->v2x, 0, out->x2); vstore4(q->v2y, 0, out->y2); vstore4(q->v2z, 0, out->z2);
+    vstore4(q->prim, 0, out->prim);
+    vstore4(q->flags, 0, out->flags);
+}
+
 /* Child c's box against the eight rays: lane c of gc_box8_entry, per ray. *hit says which
  * rays enter it before their t_best. */
 GC_FUNC float8 gc_packet_box_entry8(const GcPacketPre8* r, const GcPacketNode8* n, uint c, float8 t_best, int8* hit)
@@ -254,26 +269,18 @@ GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
             const uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
             const uint end = first + ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
             for (uint b = first; b < end; ++b) {
-                GC_GLOBAL const GcTriangle4* q = &GC_BVH_TRI(b);
-                float x0[4], y0[4], z0[4], x1[4], y1[4], z1[4], x2[4], y2[4], z2[4];
-                uint prims[4], flags[4];
-                vstore4(q->v0x, 0, x0); vstore4(q->v0y, 0, y0); vstore4(q->v0z, 0, z0);
-                vstore4(q->v1x, 0, x1); vstore4(q->v1y, 0, y1); vstore4(q->v1z, 0, z1);
-                vstore4(q->v2x, 0, x2); vstore4(q->v2y, 0, y2); vstore4(q->v2z, 0, z2);
-                vstore4(q->prim, 0, prims);
-                vstore4(q->flags, 0, flags);
+                GcPacketBlock4 q;
+                gc_packet_load_block4(&GC_BVH_TRI(b), &q);
                 for (uint k = 0u; k < 4u; ++k) {
-                    if (prims[k] == GC_INVALID) continue;
+                    if (q.prim[k] == GC_INVALID) continue;
                     float8 t, u, v;
-                    const int8 hit = gc_packet_triangle8(&r, (float3)(x0[k], y0[k], z0[k]), (float3)(x1[k], y1[k], z1[k]),
-                                                         (float3)(x2[k], y2[k], z2[k]), t_best, active, &t, &u, &v);
+                    const int8 hit = gc_packet_triangle8(&r, (float3)(q.x0[k], q.y0[k], q.z0[k]), (float3)(q.x1[k], q.y1[k], q.z1[k]),
+                                                         (float3)(q.x2[k], q.y2[k], q.z2[k]), t_best, active, &t, &u, &v);
                     if (!any(hit)) continue;
-                    const uint8 prim = (uint8)(prims[k]);
+                    const uint8 prim = (uint8)(q.prim[k]);
                     int8 take = hit & ((t < t_best) | ((t == t_best) & (prim < best.prim)));
 #if defined(GC_ALPHA_TEST)
-                    if ((flags[k] & GC_TRI_ALPHA_TESTED) != 0u) take = gc_packet_solid8(GC_ALPHA_ARGS, take, prims[k], u, v);
-#else
-                    (void)flags;
+                    if ((q.flags[k] & GC_TRI_ALPHA_TESTED) != 0u) take = gc_packet_solid8(GC_ALPHA_ARGS, take, q.prim[k], u, v);
 #endif
                     t_best = select(t_best, t, take);
                     best.u = select(best.u, u, take);

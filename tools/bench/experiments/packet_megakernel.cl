@@ -20,6 +20,7 @@
  */
 #include "gc_alpha.h"
 #include "gc_traverse.h"
+#include "gc_packet8.h"
 #include "gc_path_vertex.h"
 #include "gc_camera.h"
 #include "gc_rng.h"
@@ -223,178 +224,55 @@ static V3 pk_to_world(F3 f, V3 v) { return v3_add(v3_add(v3_scale(f.t, v.x), v3_
 
 /* ------------------------------------------------------------------ packet traversal */
 
-/* The three lanes of an axis index k (per lane): x when k == 0, y when 1, z when 2. */
-static vf pk_axis(vu k, vf x, vf y, vf z) { return SEL(k == 0u, x, SEL(k == 1u, y, z)); }
-
-/* |a| or |b|, whichever is larger (gc_abs_max4), and gc_max4, per lane. */
-static vf pk_abs_max(vf a, vf b)
+/* Eight rays from lanes of V3, t_min 0 (kernels/shared/gc_packet8.h's packets). */
+static GcRays8 pk_packet(V3 o, V3 d, vf tmax, vi active)
 {
-    const vf fa = fabs(a);
-    const vf fb = fabs(b);
-    return SEL(fa > fb, fa, fb);
-}
-static vf pk_max(vf a, vf b) { return SEL(a > b, a, b); }
-static vf pk_max_keep(vf x, vf running) { return SEL(x > running, x, running); }
-static vf pk_min_keep(vf x, vf running) { return SEL(x < running, x, running); }
-
-/* gc_ray_is_valid per ray (t_min is 0 here). */
-static vi pk_valid(V3 o, V3 d, vf tmax)
-{
-    const vi not_nan = (o.x == o.x) & (o.y == o.y) & (o.z == o.z) & (d.x == d.x) & (d.y == d.y) & (d.z == d.z);
-    const vi nonzero = (d.x != 0.0f) | (d.y != 0.0f) | (d.z != 0.0f);
-    return not_nan & nonzero & (0.0f <= tmax);
+    GcRays8 rays;
+    rays.ox = o.x; rays.oy = o.y; rays.oz = o.z;
+    rays.dx = d.x; rays.dy = d.y; rays.dz = d.z;
+    rays.tmin = (vf)(0.0f);
+    rays.tmax = tmax;
+    rays.active = active;
+    return rays;
 }
 
-/* Eight rays' gc_ray_precompute + gc_ray_with_extent_margin, lane by lane. */
-typedef struct {
-    V3 o, inv;
-    vf sx, sy, sz, margin;
-    vu kx, ky, kz;
-    vi pos_x, pos_y, pos_z;
-} PkRays;
-
-static PkRays pk_rays(float extent, V3 o, V3 d)
-{
-    PkRays r;
-    r.o = o;
-    r.inv = v3(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
-    const vf inv_min = fmin(fabs(r.inv.x), fmin(fabs(r.inv.y), fabs(r.inv.z)));
-    const vf adx = fabs(d.x), ady = fabs(d.y), adz = fabs(d.z);
-    r.kz = SEL(adx > ady, SEL(adx > adz, (vu)(0u), (vu)(2u)), SEL(ady > adz, (vu)(1u), (vu)(2u)));
-    r.kx = SEL(r.kz == 2u, (vu)(0u), r.kz + 1u);
-    r.ky = SEL(r.kx == 2u, (vu)(0u), r.kx + 1u);
-    r.sz = pk_axis(r.kz, r.inv.x, r.inv.y, r.inv.z);
-    r.sx = pk_axis(r.kx, d.x, d.y, d.z) * r.sz;
-    r.sy = pk_axis(r.ky, d.x, d.y, d.z) * r.sz;
-    r.margin = GC_BOX_ABS_EPS * ((extent + fmax(fabs(o.x), fmax(fabs(o.y), fabs(o.z)))) * inv_min);
-    r.pos_x = r.inv.x >= 0.0f;
-    r.pos_y = r.inv.y >= 0.0f;
-    r.pos_z = r.inv.z >= 0.0f;
-    return r;
-}
-
-/* A BVH8 node's boxes and children, unpacked for scalar indexing. */
-typedef struct {
-    float lox[8], hix[8], loy[8], hiy[8], loz[8], hiz[8];
-    uint kids[8];
-} PkNode;
-
-static void pk_unpack(GcBvh8Node n, PkNode* u)
-{
-    vstore8((float8)(n.lo_x0, n.lo_x1), 0, u->lox);
-    vstore8((float8)(n.hi_x0, n.hi_x1), 0, u->hix);
-    vstore8((float8)(n.lo_y0, n.lo_y1), 0, u->loy);
-    vstore8((float8)(n.hi_y0, n.hi_y1), 0, u->hiy);
-    vstore8((float8)(n.lo_z0, n.lo_z1), 0, u->loz);
-    vstore8((float8)(n.hi_z0, n.hi_z1), 0, u->hiz);
-    vstore8((uint8)(n.child0, n.child1), 0, u->kids);
-}
-
-/* Child c's box against the eight rays: gc_box8_entry's lane c, per ray. */
-static vf pk_box_entry(const PkRays* r, const PkNode* n, uint c, vf tmax, vi* hit)
-{
-    const vf nx = SEL(r->pos_x, (vf)(n->lox[c]), (vf)(n->hix[c])) - r->o.x;
-    const vf fx = SEL(r->pos_x, (vf)(n->hix[c]), (vf)(n->lox[c])) - r->o.x;
-    const vf ny = SEL(r->pos_y, (vf)(n->loy[c]), (vf)(n->hiy[c])) - r->o.y;
-    const vf fy = SEL(r->pos_y, (vf)(n->hiy[c]), (vf)(n->loy[c])) - r->o.y;
-    const vf nz = SEL(r->pos_z, (vf)(n->loz[c]), (vf)(n->hiz[c])) - r->o.z;
-    const vf fz = SEL(r->pos_z, (vf)(n->hiz[c]), (vf)(n->loz[c])) - r->o.z;
-    const vf tnear = pk_max_keep(nz * r->inv.z, pk_max_keep(ny * r->inv.y, pk_max_keep(nx * r->inv.x, (vf)(0.0f))));
-    const vf tfar = pk_min_keep(fz * r->inv.z, pk_min_keep(fy * r->inv.y, pk_min_keep(fx * r->inv.x, tmax)));
-    const vf entry = tnear - r->margin;
-    *hit = entry <= tfar * GC_BOX_TFAR_SCALE;
-    return entry;
-}
-
-/* Triangle (v0, v1, v2) against the eight rays: gc_intersect_triangle4's operations for one
- * lane, per ray. Returns the rays that hit it with t in [0, tmax] (only `active` ones). */
-static vi pk_triangle(const PkRays* r, float3 p0, float3 p1, float3 p2, vf tmax, vi active, vf* t, vf* u, vf* v)
-{
-    const vf a0 = p0.x - r->o.x, a1 = p0.y - r->o.y, a2 = p0.z - r->o.z;
-    const vf b0 = p1.x - r->o.x, b1 = p1.y - r->o.y, b2 = p1.z - r->o.z;
-    const vf c0 = p2.x - r->o.x, c1 = p2.y - r->o.y, c2 = p2.z - r->o.z;
-    const vf az = pk_axis(r->kz, a0, a1, a2);
-    const vf bz = pk_axis(r->kz, b0, b1, b2);
-    const vf cz = pk_axis(r->kz, c0, c1, c2);
-    const vf ax = pk_axis(r->kx, a0, a1, a2) - r->sx * az;
-    const vf ay = pk_axis(r->ky, a0, a1, a2) - r->sy * az;
-    const vf bx = pk_axis(r->kx, b0, b1, b2) - r->sx * bz;
-    const vf by = pk_axis(r->ky, b0, b1, b2) - r->sy * bz;
-    const vf cx = pk_axis(r->kx, c0, c1, c2) - r->sx * cz;
-    const vf cy = pk_axis(r->ky, c0, c1, c2) - r->sy * cz;
-    const vf eu = cx * by - cy * bx;
-    const vf ev = ax * cy - ay * cx;
-    const vf ew = bx * ay - by * ax;
-    const vi inside = active & (((eu >= 0.0f) & (ev >= 0.0f) & (ew >= 0.0f)) | ((eu <= 0.0f) & (ev <= 0.0f) & (ew <= 0.0f)));
-    if (!any(inside)) return inside;
-    const vf det = eu + ev + ew;
-    const vf s2 = pk_max(pk_max(pk_abs_max(ax, ay), pk_abs_max(bx, by)), pk_abs_max(cx, cy));
-    const vf m0 = pk_max(pk_abs_max(a0, b0), fabs(c0));
-    const vf m1 = pk_max(pk_abs_max(a1, b1), fabs(c1));
-    const vf m2 = pk_max(pk_abs_max(a2, b2), fabs(c2));
-    const vf s3 = pk_max(m0, pk_max(m1, m2));
-    const vi solid = fabs(det) > GC_TRI_DET_EPS * (s2 * (s2 + s3));
-    const vf tz = eu * (r->sz * az) + ev * (r->sz * bz) + ew * (r->sz * cz);
-    const vf rcp = 1.0f / det;
-    *t = tz * rcp;
-    *u = ev * rcp;
-    *v = ew * rcp;
-    return inside & solid & (*t >= 0.0f) & (*t <= tmax);
-}
-
-/* Runs the statements after `leaf_ref` with p0, p1, p2 and prim set, for every real triangle
- * of leaf reference `leaf_ref` (variadic: the statements may contain commas). */
-#define PK_FOR_LEAF_TRIANGLES(leaf_ref, ...)                                                      \
-    {                                                                                               \
-        const uint first_ = (leaf_ref) & GC_BVH4_LEAF_FIRST_MASK;                                   \
-        const uint end_ = first_ + (((leaf_ref) >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;           \
-        for (uint b_ = first_; b_ < end_; ++b_) {                                                   \
-            const GcTriangle4 q_ = GC_BVH_TRI(b_);                                                  \
-            float x0_[4], y0_[4], z0_[4], x1_[4], y1_[4], z1_[4], x2_[4], y2_[4], z2_[4];           \
-            uint prim_[4];                                                                          \
-            vstore4(q_.v0x, 0, x0_); vstore4(q_.v0y, 0, y0_); vstore4(q_.v0z, 0, z0_);              \
-            vstore4(q_.v1x, 0, x1_); vstore4(q_.v1y, 0, y1_); vstore4(q_.v1z, 0, z1_);              \
-            vstore4(q_.v2x, 0, x2_); vstore4(q_.v2y, 0, y2_); vstore4(q_.v2z, 0, z2_);              \
-            vstore4(q_.prim, 0, prim_);                                                             \
-            for (uint j_ = 0u; j_ < 4u; ++j_) {                                                     \
-                if (prim_[j_] == GC_INVALID) continue;                                              \
-                const float3 p0 = (float3)(x0_[j_], y0_[j_], z0_[j_]);                              \
-                const float3 p1 = (float3)(x1_[j_], y1_[j_], z1_[j_]);                              \
-                const float3 p2 = (float3)(x2_[j_], y2_[j_], z2_[j_]);                              \
-                const uint prim = prim_[j_];                                                        \
-                __VA_ARGS__                                                                         \
-            }                                                                                       \
-        }                                                                                           \
-    }
-
-/* gc_trace_any for eight rays at once over the BVH8: a child is entered when any ray still
- * unoccluded hits its box, and every triangle of a leaf is tested against all of them. An
- * any-hit answer does not depend on the order nodes are visited in. */
+/* gc_trace_any for eight rays at once over the BVH8, built from gc_packet8.h's pieces: a
+ * child is entered when any ray still unoccluded hits its box, and every triangle of a leaf
+ * is tested against all of them. An any-hit answer does not depend on the order nodes are
+ * visited in. */
 static vi pk_occluded8(GC_BVH_PARAMS, V3 o, V3 d, vf tmax, vi active)
 {
+    const GcRays8 rays = pk_packet(o, d, tmax, active);
     vi occluded = 0;
-    active &= pk_valid(o, d, tmax);
-    const PkRays r = pk_rays(as_float(GC_BVH_NODE(0u).pad0.x), o, d);
+    active &= gc_packet_valid8(rays);
+    const GcPacketPre8 r = gc_packet_precompute8(rays, as_float(GC_BVH_NODE(0u).pad0.x));
     uint stack[GC_BVH8_STACK_SIZE];
     uint sp = 0u;
     uint ref = 0u;
     for (;;) {
         if ((ref & GC_BVH4_LEAF) == 0u) {
-            PkNode n;
-            pk_unpack(GC_BVH_NODE(ref), &n);
+            GcPacketNode8 n;
+            gc_packet_load_node8(&GC_BVH_NODE(ref), &n);
             for (uint c = 0u; c < 8u; ++c) {
                 vi hit;
-                pk_box_entry(&r, &n, c, tmax, &hit);
-                if (any(active & hit) && sp < GC_BVH8_STACK_SIZE) stack[sp++] = n.kids[c];
+                gc_packet_box_entry8(&r, &n, c, tmax, &hit);
+                if (any(active & hit) && sp < GC_BVH8_STACK_SIZE) stack[sp++] = n.child[c];
             }
         } else {
-            PK_FOR_LEAF_TRIANGLES(ref, {
-                (void)prim;
-                vf t, u, v;
-                const vi hit = pk_triangle(&r, p0, p1, p2, tmax, active, &t, &u, &v);
-                occluded |= hit;
-                active &= ~hit;
-            })
+            const uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
+            const uint end = first + ((ref >> GC_BVH4_LEAF_COUNT_SHIFT) & 15u) + 1u;
+            for (uint b = first; b < end; ++b) {
+                GcPacketBlock4 q;
+                gc_packet_load_block4(&GC_BVH_TRI(b), &q);
+                for (uint k = 0u; k < 4u; ++k) {
+                    if (q.prim[k] == GC_INVALID) continue;
+                    vf t, u, v;
+                    const vi hit = gc_packet_triangle8(&r, (float3)(q.x0[k], q.y0[k], q.z0[k]), (float3)(q.x1[k], q.y1[k], q.z1[k]),
+                                                       (float3)(q.x2[k], q.y2[k], q.z2[k]), tmax, active, &t, &u, &v);
+                    occluded |= hit;
+                    active &= ~hit;
+                }
+            }
             if (!any(active)) return occluded;
         }
         if (sp == 0u) break;
@@ -403,67 +281,15 @@ static vi pk_occluded8(GC_BVH_PARAMS, V3 o, V3 d, vf tmax, vi active)
     return occluded;
 }
 
-/* gc_trace_closest for eight rays at once: per ray the (t, prim) minimum of gc_traverse.h's
- * tie rule, which no visiting order changes. Children are pushed farthest first by their
- * nearest entry over the rays that hit them, and a popped node is skipped when that entry is
- * past every ray's best so far. */
+/* gc_trace_closest for eight rays at once: gc_packet8.h's packet, which the renderer now
+ * uses for camera rays. */
 static void pk_closest8(GC_BVH_PARAMS, V3 o, V3 d, vi active, vf* out_t, vf* out_u, vf* out_v, vu* out_prim)
 {
-    vf t_best = GC_RAY_UNBOUNDED;
-    vf best_u = 0.0f, best_v = 0.0f;
-    vu best_prim = (vu)(GC_INVALID);
-    active &= pk_valid(o, d, t_best);
-    const PkRays r = pk_rays(as_float(GC_BVH_NODE(0u).pad0.x), o, d);
-    uint stack_ref[GC_BVH8_STACK_SIZE];
-    float stack_entry[GC_BVH8_STACK_SIZE];
-    uint sp = 0u;
-    uint ref = 0u;
-    for (;;) {
-        if ((ref & GC_BVH4_LEAF) == 0u) {
-            PkNode n;
-            pk_unpack(GC_BVH_NODE(ref), &n);
-            const uint base = sp;
-            for (uint c = 0u; c < 8u; ++c) {
-                vi hit;
-                const vf entry = pk_box_entry(&r, &n, c, t_best, &hit);
-                hit &= active;
-                if (!any(hit) || sp >= GC_BVH8_STACK_SIZE) continue;
-                const float e = __builtin_reduce_min(SEL(hit, entry, (vf)(GC_AABB_MISS)));
-                uint j = sp++;
-                while (j > base && stack_entry[j - 1u] < e) {
-                    stack_entry[j] = stack_entry[j - 1u];
-                    stack_ref[j] = stack_ref[j - 1u];
-                    --j;
-                }
-                stack_entry[j] = e;
-                stack_ref[j] = n.kids[c];
-            }
-        } else {
-            PK_FOR_LEAF_TRIANGLES(ref, {
-                vf t, u, v;
-                const vi hit = pk_triangle(&r, p0, p1, p2, t_best, active, &t, &u, &v);
-                const vu p = (vu)(prim);
-                const vi take = hit & ((t < t_best) | ((t == t_best) & (p < best_prim)));
-                t_best = SEL(take, t, t_best);
-                best_u = SEL(take, u, best_u);
-                best_v = SEL(take, v, best_v);
-                best_prim = SEL(take, p, best_prim);
-            })
-        }
-        /* The nearest deferred node that some ray's best may not yet rule out. */
-        const float reach = __builtin_reduce_max(SEL(active, t_best, (vf)(-GC_AABB_MISS)));
-        bool found = false;
-        while (sp > 0u && !found) {
-            --sp;
-            found = gc_aabb_entry_within(stack_entry[sp], reach);
-        }
-        if (!found) break;
-        ref = stack_ref[sp];
-    }
-    *out_t = t_best;
-    *out_u = best_u;
-    *out_v = best_v;
-    *out_prim = best_prim;
+    const GcHits8 h = gc_trace_closest8(GC_BVH_ARGS, pk_packet(o, d, (vf)(GC_RAY_UNBOUNDED), active));
+    *out_t = h.t;
+    *out_u = h.u;
+    *out_v = h.v;
+    *out_prim = h.prim;
 }
 
 /* The eight paths of a work-item, lane by lane: what GcPathState and the path's ray carry,
