@@ -15,9 +15,12 @@
  * tie rule, which no visiting order changes, and a box is skipped for a ray only by the
  * single-ray test's widened `entry <= t_best`. Children are visited nearest first by their
  * smallest entry over the rays that hit them; a popped child is dropped only when its entry
- * is past every ray's best. tests/render/device_kernels_test.cpp compares against the brute
- * force on every device, and the path tests compare the megakernel's image bits with the
- * wavefront's.
+ * is past every ray's best. tests/render/device_kernels_test.cpp compares the hit records
+ * with the single-ray traversal's on every device, and tests/validation/determinism_test.cpp
+ * the megakernel's image bits with the wavefront's.
+ *
+ * The structs below live in registers and private memory only, never in a buffer, so they
+ * are not host/device layouts (gc_types.h holds those).
  *
  * OpenCL C, programs built for the BVH8 only (-D GC_BVH_WIDE8: CPUs with 8-wide SIMD); the
  * host and GLSL keep single rays. GC_HAVE_PACKET8 says whether it is compiled.
