@@ -21,6 +21,10 @@
  * rays are one of about nine rays per sample), 5.2M triangles 1.05-1.11x / 0.98-1.04x.
  * Shadow rays stay single: eight paths in lock step, to make packets of their shadow rays,
  * lost (tools/bench/experiments/README.md).
+ *
+ * One inline path loop serves both: the same loop behind helper functions (the camera ray,
+ * the path, the film update each a function) ran one sample per pass at 0.87-0.93x of the
+ * loop before the packets on the 2-core VM; this form runs it at 0.95-1.00x (4 rounds).
  */
 #include "gc_alpha.h"
 #include "gc_traverse.h"
@@ -28,45 +32,6 @@
 #include "gc_path_vertex.h"
 #include "gc_camera.h"
 #include "gc_rng.h"
-
-/* generate.cl: the camera ray of `sample` of `pixel`. */
-static GcRay camera_ray(const GcRenderParams* params, uint pixel, uint sample)
-{
-    const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params->seed);
-    return gc_camera_ray(params->camera, params->width, params->height, pixel % params->width, pixel / params->width,
-                         jitter.x, jitter.y);
-}
-
-/* extend -> shade -> shadow from the camera ray's hit until the path ends (gc_shade_vertex
- * stops it at max_depth), then accumulate.cl's value: the path's radiance, or black. */
-static float3 trace_path(GC_SCENE_PARAMS, const GcRenderParams* params, uint pixel, uint sample, GcRay ray, GcHit hit)
-{
-    GcPathState path = gc_path_start(pixel, sample);
-    for (;;) {
-        const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, *params, path, ray, hit);
-        path = res.path;
-        if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
-            path.radiance += res.shadow.contribution;
-        if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
-        ray = res.next;
-        hit = gc_trace_closest(GC_BVH_ARGS, ray);
-    }
-    return gc_film_value(path.radiance.xyz);
-}
-
-/* A sample from its camera ray on: trace_path after the camera ray's closest hit. */
-static float3 sample_value(GC_SCENE_PARAMS, const GcRenderParams* params, uint pixel, uint sample)
-{
-    const GcRay ray = camera_ray(params, pixel, sample);
-    return trace_path(GC_SCENE_ARGS, params, pixel, sample, ray, gc_trace_closest(GC_BVH_ARGS, ray));
-}
-
-/* accumulate.cl: one sample's value into its pixel's sums. */
-static void accumulate(float4* sum, float4* squares, float3 value)
-{
-    *sum += (float4)(value, 1.0f);
-    *squares += (float4)(value * value, 0.0f);
-}
 
 __kernel void path_megakernel(const GcRenderParams params,
                               GC_SCENE_PARAMS,
@@ -78,38 +43,53 @@ __kernel void path_megakernel(const GcRenderParams params,
     const uint pixel = params.pixel_offset + slot;
     float4 sum = film[pixel];
     float4 squares = film_squares[pixel];
-#if defined(GC_HAVE_PACKET8)
-    /* The pass's samples in groups of at most eight, as even as they can be made: each
-     * group's camera rays, which leave through this pixel, are traced as one packet
-     * (gc_packet8.h) when it has enough of them, then each path goes on alone, in sample
-     * order. */
+    /* The pass's samples in groups of at most eight, as even as they can be made. */
     const uint samples = params.samples_in_pass;
     const uint groups = (samples + 7u) / 8u;
     for (uint g = 0u, s0 = 0u; g < groups; ++g) {
         const uint lanes = samples / groups + (g < samples % groups ? 1u : 0u);
-        if (lanes < GC_PACKET_MIN_LANES) {
-            for (uint k = 0u; k < lanes; ++k)
-                accumulate(&sum, &squares, sample_value(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k));
-        } else {
-            GcRay cam[8];
-            GcHit hit[8];
+        /* generate.cl */
+        GcRay cam[8];
+        for (uint k = 0u; k < lanes; ++k) {
+            const float4 jitter = gc_rand4(pixel, params.sample_index + s0 + k, GC_RNG_BLOCK_CAMERA, params.seed);
+            cam[k] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
+                                   pixel / params.width, jitter.x, jitter.y);
+        }
+        /* The group's camera rays, which leave through this pixel, as one packet
+         * (gc_packet8.h) when there are enough of them; else each path traces its own. */
+        GcHit cam_hit[8];
+        bool cam_traced = false;
+#if defined(GC_HAVE_PACKET8)
+        if (lanes >= GC_PACKET_MIN_LANES) {
             int active[8];
             for (uint k = 0u; k < 8u; ++k) {
                 active[k] = k < lanes;
-                /* Idle lanes hold a copy of the last ray, never traced. */
-                cam[k] = k < lanes ? camera_ray(&params, pixel, params.sample_index + s0 + k) : cam[lanes - 1u];
+                if (k >= lanes) cam[k] = cam[lanes - 1u]; /* idle lanes: a copy, never traced */
             }
-            gc_packet_closest_hits8(GC_BVH_ARGS, cam, active, hit);
-            for (uint k = 0u; k < lanes; ++k)
-                accumulate(&sum, &squares,
-                           trace_path(GC_SCENE_ARGS, &params, pixel, params.sample_index + s0 + k, cam[k], hit[k]));
+            gc_packet_closest_hits8(GC_BVH_ARGS, cam, active, cam_hit);
+            cam_traced = true;
+        }
+#endif
+        for (uint k = 0u; k < lanes; ++k) {
+            GcRay ray = cam[k];
+            GcPathState path = gc_path_start(pixel, params.sample_index + s0 + k);
+            /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
+            for (bool first = true;; first = false) {
+                const GcHit hit = first && cam_traced ? cam_hit[k] : gc_trace_closest(GC_BVH_ARGS, ray);
+                const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit);
+                path = res.path;
+                if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
+                    path.radiance += res.shadow.contribution;
+                if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
+                ray = res.next;
+            }
+            /* accumulate.cl, in sample order */
+            const float3 value = gc_film_value(path.radiance.xyz);
+            sum += (float4)(value, 1.0f);
+            squares += (float4)(value * value, 0.0f);
         }
         s0 += lanes;
     }
-#else
-    for (uint s = 0u; s < params.samples_in_pass; ++s)
-        accumulate(&sum, &squares, sample_value(GC_SCENE_ARGS, &params, pixel, params.sample_index + s));
-#endif
     film[pixel] = sum;
     film_squares[pixel] = squares;
 }
