@@ -71,6 +71,23 @@ RenderSettings small_path_render(std::uint32_t spp, std::uint32_t seed)
     return s;
 }
 
+// Renders spp samples through render_samples, in passes as the renderer plans them (or as
+// its settings' samples_per_pass fixes them); returns the samples of each pass.
+std::vector<std::uint32_t> render_in_passes(Renderer& renderer, std::uint32_t spp)
+{
+    std::vector<std::uint32_t> passes;
+    while (renderer.samples_done() < spp) passes.push_back(renderer.render_samples(spp - renderer.samples_done()));
+    return passes;
+}
+
+// " 3 3 3 2": the passes, for the tests' output.
+std::string shown(const std::vector<std::uint32_t>& passes)
+{
+    std::string text;
+    for (std::uint32_t p : passes) text += " " + std::to_string(p);
+    return text;
+}
+
 // Renders s.spp samples through render_samples (grouped as the renderer plans them) and
 // checks the films against one sample per pass; returns the samples of each pass.
 std::vector<std::uint32_t> expect_grouping_keeps_bits(const cl::Context& context, const Scene& scene,
@@ -82,17 +99,11 @@ std::vector<std::uint32_t> expect_grouping_keeps_bits(const cl::Context& context
 
     const FlatBvh bvh = build_bvh(scene);
     Renderer grouped(context, scene, bvh, camera, s);
-    std::vector<std::uint32_t> passes;
-    while (grouped.samples_done() < s.spp) passes.push_back(grouped.render_samples(s.spp - grouped.samples_done()));
-    std::string shown;
-    for (std::uint32_t p : passes) {
-        shown += ' ';
-        shown += std::to_string(p);
-    }
+    const std::vector<std::uint32_t> passes = render_in_passes(grouped, s.spp);
     const bool mean_same = bit_identical(single.mean, grouped.film());
     const bool variance_same = bit_identical(single.variance, grouped.variance());
     std::printf("%s, %u pixels per launch: samples per pass:%s; mean films %s, variance films %s\n",
-                grouped.uses_megakernel() ? "megakernel" : "wavefront", grouped.wavefront_size(), shown.c_str(),
+                grouped.uses_megakernel() ? "megakernel" : "wavefront", grouped.wavefront_size(), shown(passes).c_str(),
                 mean_same ? "identical" : "DIFFER", variance_same ? "identical" : "DIFFER");
     EXPECT_TRUE(mean_same);
     EXPECT_TRUE(variance_same);
@@ -168,22 +179,20 @@ void expect_megakernel_equals_wavefront(const cl::Context& context, const Scene&
     const FlatBvh bvh = build_bvh(scene);
     Film mean[2];
     Film variance[2];
-    std::string passes;
+    std::vector<std::uint32_t> megakernel_passes;
     const char* forms[2] = {"wavefront", "megakernel"};
     for (int i = 0; i < 2; ++i) {
         const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", forms[i]);
         Renderer renderer(context, scene, bvh, camera, s);
-        while (renderer.samples_done() < s.spp) {
-            const std::uint32_t done = renderer.render_samples(s.spp - renderer.samples_done());
-            if (renderer.uses_megakernel()) passes += " " + std::to_string(done);
-        }
+        const std::vector<std::uint32_t> passes = render_in_passes(renderer, s.spp);
+        if (renderer.uses_megakernel()) megakernel_passes = passes;
         mean[i] = renderer.film();
         variance[i] = renderer.variance();
     }
     const bool mean_same = bit_identical(mean[0], mean[1]);
     const bool variance_same = bit_identical(variance[0], variance[1]);
-    std::printf("%u spp, the megakernel's passes:%s; mean films %s, variance films %s\n", s.spp, passes.c_str(),
-                mean_same ? "identical" : "DIFFER", variance_same ? "identical" : "DIFFER");
+    std::printf("%u spp, the megakernel's passes:%s; mean films %s, variance films %s\n", s.spp,
+                shown(megakernel_passes).c_str(), mean_same ? "identical" : "DIFFER", variance_same ? "identical" : "DIFFER");
     EXPECT_TRUE(mean_same);
     EXPECT_TRUE(variance_same);
 }

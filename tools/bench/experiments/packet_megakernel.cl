@@ -29,9 +29,6 @@ typedef float8 vf;
 typedef int8 vi;
 typedef uint8 vu;
 
-/* The arguments of GC_SCENE_PARAMS, for the calls of pk_segment. */
-#define GC_SCENE_ARGS_PK GC_BVH_ARGS, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
-
 #define SEL(m, a, b) select((b), (a), (m)) /* lane-wise m ? a : b */
 #define LANES 8u
 
@@ -534,7 +531,7 @@ __kernel void path_megakernel(const GcRenderParams params,
         bool camera_rays = true;
         while (any(ps.alive)) {
             const vi was = ps.alive;
-            const vi survive = pk_segment(&params, GC_SCENE_ARGS_PK, &ps, camera_rays ? PK_PACKET_PRIMARY : PK_PACKET_CLOSEST);
+            const vi survive = pk_segment(&params, GC_SCENE_ARGS, &ps, camera_rays ? PK_PACKET_PRIMARY : PK_PACKET_CLOSEST);
             camera_rays = false;
             done = v3_sel(was & ~survive, ps.L, done);
             ps.alive = survive;
@@ -574,7 +571,7 @@ __kernel void path_megakernel(const GcRenderParams params,
                 ++next;
             }
             if (!any(ps.alive)) break;
-            const vi survive = pk_segment(&params, GC_SCENE_ARGS_PK, &ps, PK_PACKET_CLOSEST);
+            const vi survive = pk_segment(&params, GC_SCENE_ARGS, &ps, PK_PACKET_CLOSEST);
             /* accumulate.cl for the lanes whose path ended */
             const vi ended = ps.alive & ~survive;
             for (uint k = 0u; k < LANES; ++k) {
