@@ -1,7 +1,7 @@
 /*
  * megakernel.cl — the path integrator as one kernel: one work-item per pixel of the batch
- * traces that pixel's samples of the pass one after the other, each path from camera to
- * termination (generate -> [extend -> shade -> shadow]* -> accumulate of wavefront.cl in a
+ * (or per few neighbours, below) traces that pixel's samples of the pass one after the other,
+ * each path from camera to termination (generate -> [extend -> shade -> shadow]* -> accumulate of wavefront.cl in a
  * loop, as the Vulkan reference kernels/vk/path.comp does).
  *
  * Why a second form: on CPUs (PoCL) the wavefront's ~30 launches, queue atomics, counter
@@ -19,6 +19,12 @@
  * passes, H200 host's 16 PoCL cores / 2-core VM (two runs each): bunny 1.21-1.27x /
  * 1.32-1.49x, dragon 1.18-1.19x / 1.32-1.34x, Cornell box 1.00-1.11x / 1.00x (its camera
  * rays are one of about nine rays per sample), 5.2M triangles 1.05-1.11x / 0.98-1.04x.
+ * A pass of one to four samples has too few for a packet, so there a work-item takes two to
+ * eight neighbouring pixels of a row and packs their camera rays together
+ * (gc_packet_lanes.h). Such passes start every render and fill the first seconds of a large
+ * image on few cores. 2-core VM, both cores, against one pixel per work-item, 2-3
+ * interleaved rounds: one sample per pass, bunny 1.29x and dragon 1.11-1.18x; two, 1.32x
+ * and 1.16x; four, 1.23x and 1.33x; the Cornell box 0.98-1.03x.
  * Shadow rays stay single: eight paths in lock step, to make packets of their shadow rays,
  * lost (tools/bench/experiments/README.md).
  *
@@ -38,25 +44,32 @@ __kernel void path_megakernel(const GcRenderParams params,
                               __global float4* film,
                               __global float4* film_squares)
 {
-    const uint slot = get_global_id(0);
-    if (slot >= params.pixel_count) return;
-    const uint pixel = params.pixel_offset + slot;
-    float4 sum = film[pixel];
-    float4 squares = film_squares[pixel];
-    /* The pass's samples in groups of at most eight, as even as they can be made. */
+    /* This work-item's pixels: pixels_per_item neighbours in the batch (gc_packet_lanes.h). */
+    const uint per_item = max(params.pixels_per_item, 1u);
+    const uint first = get_global_id(0) * per_item;
     const uint samples = params.samples_in_pass;
-    const uint groups = (samples + 7u) / 8u;
-    for (uint g = 0u, s0 = 0u; g < groups; ++g) {
-        const uint lanes = samples / groups + (g < samples % groups ? 1u : 0u);
+    if (first >= params.pixel_count || samples == 0u) return;
+    const uint pixels = min(per_item, params.pixel_count - first);
+    /* Its (pixel, sample) pairs, pixel by pixel and each pixel's samples in order, in groups of
+     * at most eight, as even as they can be made. */
+    const uint pairs = pixels * samples;
+    const uint groups = (pairs + 7u) / 8u;
+    uint pixel = GC_INVALID; /* whose sums are open */
+    float4 sum = (float4)(0.0f);
+    float4 squares = (float4)(0.0f);
+    for (uint g = 0u, p0 = 0u; g < groups; ++g) {
+        const uint lanes = pairs / groups + (g < pairs % groups ? 1u : 0u);
         /* generate.cl */
         GcRay cam[8];
         for (uint k = 0u; k < lanes; ++k) {
-            const float4 jitter = gc_rand4(pixel, params.sample_index + s0 + k, GC_RNG_BLOCK_CAMERA, params.seed);
-            cam[k] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
-                                   pixel / params.width, jitter.x, jitter.y);
+            const uint px = params.pixel_offset + first + (p0 + k) / samples;
+            const uint sample = params.sample_index + (p0 + k) % samples;
+            const float4 jitter = gc_rand4(px, sample, GC_RNG_BLOCK_CAMERA, params.seed);
+            cam[k] = gc_camera_ray(params.camera, params.width, params.height, px % params.width, px / params.width,
+                                   jitter.x, jitter.y);
         }
-        /* The group's camera rays, which leave through this pixel, as one packet
-         * (gc_packet8.h) when there are enough of them; else each path traces its own. */
+        /* The group's camera rays, which leave through one pixel or a few neighbours, as one
+         * packet (gc_packet8.h) when there are enough of them; else each path traces its own. */
         GcHit cam_hit[8];
         bool cam_traced = false;
 #if defined(GC_HAVE_PACKET8)
@@ -71,11 +84,21 @@ __kernel void path_megakernel(const GcRenderParams params,
         }
 #endif
         for (uint k = 0u; k < lanes; ++k) {
+            const uint px = params.pixel_offset + first + (p0 + k) / samples;
+            if (px != pixel) {
+                if (pixel != GC_INVALID) {
+                    film[pixel] = sum;
+                    film_squares[pixel] = squares;
+                }
+                pixel = px;
+                sum = film[pixel];
+                squares = film_squares[pixel];
+            }
             GcRay ray = cam[k];
-            GcPathState path = gc_path_start(pixel, params.sample_index + s0 + k);
+            GcPathState path = gc_path_start(pixel, params.sample_index + (p0 + k) % samples);
             /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
-            for (bool first = true;; first = false) {
-                const GcHit hit = first && cam_traced ? cam_hit[k] : gc_trace_closest(GC_BVH_ARGS, ray);
+            for (bool first_segment = true;; first_segment = false) {
+                const GcHit hit = first_segment && cam_traced ? cam_hit[k] : gc_trace_closest(GC_BVH_ARGS, ray);
                 const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit);
                 path = res.path;
                 if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
@@ -88,7 +111,7 @@ __kernel void path_megakernel(const GcRenderParams params,
             sum += (float4)(value, 1.0f);
             squares += (float4)(value * value, 0.0f);
         }
-        s0 += lanes;
+        p0 += lanes;
     }
     film[pixel] = sum;
     film_squares[pixel] = squares;

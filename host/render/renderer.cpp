@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gc_packet_lanes.h"
 #include "host/render/environment.h"
 #include "host/render/scene_convert.h"
 #include "host/util/env_choice.h"
@@ -139,6 +140,10 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     const auto start = std::chrono::steady_clock::now();
     m_params.sample_index = m_samples;
     m_params.samples_in_pass = samples;
+    // The megakernel's camera-ray packets exist on the BVH8 only (gc_packet8.h); where a pass
+    // has too few samples to fill them, a work-item takes neighbouring pixels too.
+    const bool camera_packets = m_megakernel && m_scene.bvh.layout() == BvhLayout::Wide8;
+    m_params.pixels_per_item = camera_packets ? dev::gc_megakernel_pixels_per_item(samples) : 1u;
     for (std::uint32_t offset = 0; offset < pixels; offset += m_batch) {
         m_params.pixel_offset = offset;
         m_params.pixel_count = std::min(m_batch, pixels - offset);
@@ -166,12 +171,13 @@ void Renderer::run_whitted_batch()
     m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
 }
 
-// One work-item per pixel of the batch runs its samples of the pass from camera to end.
+// One work-item per pixel of the batch (or per few neighbours: gc_packet_lanes.h) runs its
+// samples of the pass from camera to end.
 void Renderer::run_megakernel_batch()
 {
     m_path_megakernel.set_args(m_params, m_scene.scene_args(), m_film, m_film_squares);
-    m_path_megakernel.launch(m_context, m_params.pixel_count, megakernel_local_size(m_context),
-                             "paths (megakernel)");
+    const std::uint32_t items = (m_params.pixel_count + m_params.pixels_per_item - 1) / m_params.pixels_per_item;
+    m_path_megakernel.launch(m_context, items, megakernel_local_size(m_context), "paths (megakernel)");
 }
 
 void Renderer::run_path_batch()

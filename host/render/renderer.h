@@ -44,6 +44,8 @@ public:
     std::uint32_t samples_done() const { return m_samples; }
     std::uint32_t wavefront_size() const { return m_batch; }
     bool uses_megakernel() const { return m_megakernel; }
+    // Pixels one megakernel work-item rendered in the last pass (gc_packet_lanes.h); 1 elsewhere.
+    std::uint32_t pixels_per_item() const { return m_params.pixels_per_item; }
     const cl::Program& program() const { return m_program; }
     const DeviceScene& device_scene() const { return m_scene; }
 

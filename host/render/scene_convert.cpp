@@ -263,6 +263,7 @@ dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera,
     p.pixel_offset = 0;
     p.pixel_count = p.width * p.height;
     p.samples_in_pass = 1;
+    p.pixels_per_item = 1;
     return p;
 }
 

@@ -146,7 +146,7 @@ GC_LAYOUT_FIELD(GcRenderParams, emitter_power)
 GC_LAYOUT_FIELD(GcRenderParams, env_width)
 GC_LAYOUT_FIELD(GcRenderParams, env_height)
 GC_LAYOUT_FIELD(GcRenderParams, samples_in_pass)
-GC_LAYOUT_FIELD(GcRenderParams, pad2)
+GC_LAYOUT_FIELD(GcRenderParams, pixels_per_item)
 
 GC_LAYOUT_SIZE(GcPathState)
 GC_LAYOUT_FIELD(GcPathState, throughput)

@@ -1,8 +1,9 @@
 /*
  * gc_packet8.h — closest hits of eight rays in one traversal of the BVH8, for rays that
- * travel together: the camera rays of one pixel's consecutive samples, which the CPU path
- * megakernel traces as one packet (kernels/megakernel.cl). They leave one point through one
- * pixel, so they open nearly the same nodes and triangles, and one traversal with the eight
+ * travel together: the camera rays of one pixel's consecutive samples, or of a few
+ * neighbouring pixels (gc_packet_lanes.h), which the CPU path megakernel traces as one packet
+ * (kernels/megakernel.cl). They leave one point through one pixel or a few, so they open
+ * nearly the same nodes and triangles, and one traversal with the eight
  * rays in float8 lanes replaces eight: node loads, child ordering and stack work are paid
  * once, and a triangle is tested against all eight rays in one set of vector operations.
  * Rays that part ways after the first bounce are traced one by one (gc_traverse8.h): in
@@ -28,17 +29,11 @@
 #ifndef GC_PACKET8_H
 #define GC_PACKET8_H
 
+#include "gc_packet_lanes.h"
 #include "gc_traverse.h"
 
 #if defined(GC_OPENCL) && defined(GC_BVH_WIDE8)
 #define GC_HAVE_PACKET8 1
-
-/* Fewer rays than this are traced one by one: the packet tests each box and triangle in
- * turn against its lanes, where a single ray tests eight boxes or four triangles at once, so
- * a packet pays only when most lanes hold a ray. 2-core VM, path samples with the camera
- * rays of 1 / 2 / 4 / 6 / 8 samples per packet against single rays: dragon 0.59 / 0.92 /
- * 0.90 / 1.13 / 1.15x, bunny 0.61 / 0.84 / 1.04 / 1.36 / 1.41x (2 interleaved rounds). */
-#define GC_PACKET_MIN_LANES 6u
 
 GC_NAMESPACE_BEGIN
 

@@ -247,7 +247,8 @@ GC_STRUCT(GcRenderParams) {
     uint samples_in_pass; /* path integrator: sample indices sample_index .. + samples_in_pass - 1
                            * in this pass; its paths are pixel_count * samples_in_pass, slot =
                            * pixel slot * samples_in_pass + s (a pixel's samples side by side) */
-    uint pad2;
+    uint pixels_per_item; /* CPU path megakernel: neighbouring pixels one work-item renders
+                           * (gc_packet_lanes.h); 1 for every other kernel */
 } GC_STRUCT_END(GcRenderParams)
 
 /* ---- Wavefront path state (path integrator). One slot per path in flight; a slot owns

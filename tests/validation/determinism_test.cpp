@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "gc_packet_lanes.h"
+#include "host/render/device_bvh.h"
 #include "host/scene/load.h"
 #include "tests/cl/cl_test_util.h"
 #include "tests/render/alpha_scenes.h"
@@ -173,28 +175,35 @@ TEST_F(DeterminismTest, MegakernelEqualsWavefront)
 // The megakernel against the wavefront with `s`, on the context's device, each rendering
 // its samples in passes of up to s.samples_per_pass (Renderer::render_samples), so that the
 // megakernel's work-items trace several samples per pass.
-void expect_megakernel_equals_wavefront(const cl::Context& context, const Scene& scene, const Camera& camera,
-                                        const RenderSettings& s)
+// Returns the megakernel's pixels per work-item in its last pass.
+std::uint32_t expect_megakernel_equals_wavefront(const cl::Context& context, const Scene& scene, const Camera& camera,
+                                                 const RenderSettings& s)
 {
     const FlatBvh bvh = build_bvh(scene);
     Film mean[2];
     Film variance[2];
     std::vector<std::uint32_t> megakernel_passes;
+    std::uint32_t pixels_per_item = 0;
     const char* forms[2] = {"wavefront", "megakernel"};
     for (int i = 0; i < 2; ++i) {
         const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", forms[i]);
         Renderer renderer(context, scene, bvh, camera, s);
         const std::vector<std::uint32_t> passes = render_in_passes(renderer, s.spp);
-        if (renderer.uses_megakernel()) megakernel_passes = passes;
+        if (renderer.uses_megakernel()) {
+            megakernel_passes = passes;
+            pixels_per_item = renderer.pixels_per_item();
+        }
         mean[i] = renderer.film();
         variance[i] = renderer.variance();
     }
     const bool mean_same = bit_identical(mean[0], mean[1]);
     const bool variance_same = bit_identical(variance[0], variance[1]);
-    std::printf("%u spp, the megakernel's passes:%s; mean films %s, variance films %s\n", s.spp,
-                shown(megakernel_passes).c_str(), mean_same ? "identical" : "DIFFER", variance_same ? "identical" : "DIFFER");
+    std::printf("%u spp, the megakernel's passes:%s, %u pixel(s) per work-item; mean films %s, variance films %s\n",
+                s.spp, shown(megakernel_passes).c_str(), pixels_per_item, mean_same ? "identical" : "DIFFER",
+                variance_same ? "identical" : "DIFFER");
     EXPECT_TRUE(mean_same);
     EXPECT_TRUE(variance_same);
+    return pixels_per_item;
 }
 
 TEST_F(DeterminismTest, MegakernelCameraPacketsEqualWavefront)
@@ -207,6 +216,31 @@ TEST_F(DeterminismTest, MegakernelCameraPacketsEqualWavefront)
     RenderSettings s = small_path_render(29, 21);
     s.samples_per_pass = 16;
     expect_megakernel_equals_wavefront(*context, scene, validation::cornell_camera(), s);
+}
+
+TEST_F(DeterminismTest, MegakernelPacketsOfNeighbouringPixelsEqualWavefront)
+{
+    // Passes of one to four samples: on the BVH8 a work-item takes eight, four, two or two
+    // neighbouring pixels (gc_packet_lanes.h) and traces their camera rays as one packet. The
+    // image is 43 pixels wide (items straddle rows) and launches hold 100 pixels (the last item
+    // of a launch has fewer pixels, and the last launch one pixel). Same bits as the wavefront.
+    const Scene scene = load_cornell("CornellBox-Sphere.obj");
+    RenderSettings s = small_path_render(0, 17);
+    s.width = 43;
+    s.height = 7;
+    s.wavefront_size = 100;
+    const bool wide8 = bvh_layout_for(context->device()) == BvhLayout::Wide8;
+    for (std::uint32_t per_pass : {1u, 2u, 3u, 4u}) {
+        s.samples_per_pass = per_pass;
+        s.spp = 2 * per_pass;
+        const std::uint32_t pixels = expect_megakernel_equals_wavefront(*context, scene, validation::cornell_camera(), s);
+        EXPECT_EQ(pixels, wide8 ? dev::gc_megakernel_pixels_per_item(per_pass) : 1u) << per_pass << " per pass";
+    }
+    if (wide8) {
+        EXPECT_EQ(dev::gc_megakernel_pixels_per_item(1), 8u);
+        EXPECT_EQ(dev::gc_megakernel_pixels_per_item(3), 2u);
+        EXPECT_EQ(dev::gc_megakernel_pixels_per_item(5), 1u);
+    }
 }
 
 TEST_F(DeterminismTest, MegakernelEqualsWavefrontThroughAlphaMask)
