@@ -17,6 +17,9 @@ cmake -S . -B build/bare -DGEOCOLD_BUILD_BENCH=ON > "$out/bench-configure.log"
 cmake --build build/bare --target geocold-bench -j "$(nproc)" > "$out/bench-build.log" 2>&1 ||
     { tail -50 "$out/bench-build.log" >&2; exit 3; }
 
+# A bench built with the carried Embree (tools/device/build-and-test.sh) loads it from there.
+# shellcheck source=tools/device/embree-env.sh
+source "$root/tools/device/embree-env.sh"
 if [ -z "${GEOCOLD_SHARED_DIR:-}" ]; then
     for d in "$root/shared" "$root/../shared"; do
         if [ -d "$d/scenes" ]; then export GEOCOLD_SHARED_DIR="$d"; break; fi

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -203,18 +204,44 @@ double agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uin
 }
 
 // A CPU device's timings, in rounds interleaved with Embree on the same cores: each round
-// times Embree's single-ray and 16-wide calls and then the device once, so a change in the
+// times Embree's single-ray and 16-wide calls and then the device once in each of its forms
+// (single rays, and for closest hits on the BVH8 packets of eight), so a change in the
 // machine's load between them hits both sides alike. (Separate runs, Embree's first, moved the
 // ratio by up to 1.6x between runs a minute apart on a shared VM.)
 struct InterleavedRays {
-    std::vector<double> device_seconds;  // one per round
-    double ratio_to_embree = 0.0;        // median of the per-round ratios to Embree's faster call
+    std::vector<double> single_seconds;  // one per round
+    std::vector<double> packet_seconds;  // one per round where the device traces packets
+    double ratio_to_embree = 0.0;        // median of the per-round ratios, our faster form to Embree's
 };
 
-InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads,
-                                  int rounds, std::vector<std::uint32_t>& result)
+// Our forms of tracing `kind`: single rays, and packets of eight where the tracer has them
+// (closest hits only: there is no any-hit packet). Each call traces the set `repeats` times.
+struct DeviceRays {
+    std::vector<double> single_seconds;
+    std::vector<double> packet_seconds;
+    std::vector<std::uint32_t> single_result;
+    std::vector<std::uint32_t> packet_result;
+};
+
+bool traces_packets(const RayKind& kind, const OclTracer& tracer) { return !kind.any && tracer.has_packets(); }
+
+DeviceRays trace_on_device(const RayKind& kind, OclTracer& tracer, int repeats)
 {
-    const double n = double(kind.rays->size());
+    DeviceRays out;
+    out.single_seconds = kind.any ? tracer.occluded(*kind.rays, repeats, out.single_result)
+                                  : tracer.closest(*kind.rays, repeats, out.single_result);
+    if (traces_packets(kind, tracer)) out.packet_seconds = tracer.closest_packets(*kind.rays, repeats, out.packet_result);
+    return out;
+}
+
+double rays_per_second(const RayKind& kind, const std::vector<double>& seconds)
+{
+    return seconds.empty() || !(seconds[0] > 0.0) ? 0.0 : double(kind.rays->size()) / seconds[0];
+}
+
+InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads,
+                                  int rounds, DeviceRays& result)
+{
     InterleavedRays out;
     std::vector<double> ratios;
     std::vector<std::uint32_t> embree_scratch;
@@ -223,12 +250,13 @@ InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embre
         for (int width : {1, 16}) {
             const double t = kind.any ? embree.occluded(*kind.rays, threads, width, embree_scratch)
                                       : embree.closest(*kind.rays, threads, width, embree_scratch);
-            embree_best = std::max(embree_best, n / t);
+            embree_best = std::max(embree_best, double(kind.rays->size()) / t);
         }
-        const std::vector<double> t =
-            kind.any ? tracer.occluded(*kind.rays, 1, result) : tracer.closest(*kind.rays, 1, result);
-        out.device_seconds.insert(out.device_seconds.end(), t.begin(), t.end());
-        if (!t.empty() && t[0] > 0.0) ratios.push_back(n / t[0] / embree_best);
+        result = trace_on_device(kind, tracer, 1);
+        out.single_seconds.insert(out.single_seconds.end(), result.single_seconds.begin(), result.single_seconds.end());
+        out.packet_seconds.insert(out.packet_seconds.end(), result.packet_seconds.begin(), result.packet_seconds.end());
+        const double ours = std::max(rays_per_second(kind, result.single_seconds), rays_per_second(kind, result.packet_seconds));
+        if (ours > 0.0) ratios.push_back(ours / embree_best);
     }
     out.ratio_to_embree = ratios.empty() ? 0.0 : median(ratios);
     return out;
@@ -288,20 +316,48 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
             // A CPU is timed in the rounds interleaved with Embree; a GPU (or any device when
             // there is no Embree) alone, and compared with Embree's medians above.
             const bool interleave = embree && !d.info.is_gpu;
-            std::vector<std::uint32_t> result;
-            std::vector<double> times;
+            DeviceRays traced;
             double to_embree = 0.0;
             if (interleave) {
-                InterleavedRays rounds = trace_interleaved(kind, *embree, tracer, threads, repeats, result);
-                times = std::move(rounds.device_seconds);
+                InterleavedRays rounds = trace_interleaved(kind, *embree, tracer, threads, repeats, traced);
+                traced.single_seconds = std::move(rounds.single_seconds);
+                traced.packet_seconds = std::move(rounds.packet_seconds);
                 to_embree = rounds.ratio_to_embree;
             } else {
-                times = kind.any ? tracer.occluded(*kind.rays, repeats, result) : tracer.closest(*kind.rays, repeats, result);
+                traced = trace_on_device(kind, tracer, repeats);
             }
-            const double mrays = times.empty() ? 0.0 : double(kind.rays->size()) / median(times) / 1e6;
+            const auto mrays_of = [&](const std::vector<double>& t) {
+                return t.empty() ? 0.0 : double(kind.rays->size()) / median(t) / 1e6;
+            };
+            const double single = mrays_of(traced.single_seconds);
+            const double packets = mrays_of(traced.packet_seconds);
+            const bool packets_lead = packets > single;
+            const double mrays = std::max(single, packets);
+            // Packets must find the single rays' hits (gc_packet8.h promises the same bits; the
+            // device tests check it on test rays, this on every bench set).
+            if (traces_packets(kind, tracer) && traced.packet_result != traced.single_result) {
+                std::size_t differ = 0;
+                for (std::size_t i = 0; i < traced.single_result.size(); ++i)
+                    differ += traced.packet_result[i] != traced.single_result[i];
+                throw std::runtime_error(s.name + ", " + d.label() + ": packets of eight found other hits than single rays on " +
+                                         std::to_string(differ) + " of " + std::to_string(traced.single_result.size()) +
+                                         " " + kind.name + " rays");
+            }
+            const std::vector<std::uint32_t>& result = traced.single_result;
             json& j = out["rays"][kind.name]["devices"][d.label()];
             j["mrays_per_s"] = json_number(mrays);
+            j["form"] = packets_lead ? "packets8" : "single";
+            j["single_mrays_per_s"] = json_number(single);
+            if (traces_packets(kind, tracer)) j["packets8_mrays_per_s"] = json_number(packets);
             j["bvh_layout"] = tracer.layout();  // BVH2 on GPUs, BVH8 or BVH4 on CPUs
+            std::string form = tracer.layout();
+            if (traces_packets(kind, tracer)) {
+                char buffer[128];
+                std::snprintf(buffer, sizeof buffer, packets_lead ? ", packets of 8 neighbouring rays; single rays %.2f"
+                                                                  : ", single rays; packets of 8 neighbouring rays %.2f",
+                              packets_lead ? single : packets);
+                form += buffer;
+            }
             std::string extra;
             if (embree) {
                 const double agree = agreement(result, embree_result[k]);
@@ -329,7 +385,7 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
                               bytes, cost[k].inner_visits, cost[k].triangle_tests, bound, 100.0 * mrays / bound);
                 extra += buffer;
             }
-            say("  %s %-7s: %.2f Mrays/s (%s)%s\n", d.label().c_str(), kind.name, mrays, tracer.layout(), extra.c_str());
+            say("  %s %-7s: %.2f Mrays/s (%s)%s\n", d.label().c_str(), kind.name, mrays, form.c_str(), extra.c_str());
         }
     }
 }

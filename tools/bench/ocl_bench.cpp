@@ -15,6 +15,7 @@ OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh)
       m_closest(m_program.kernel("trace_closest")),
       m_any(m_program.kernel("trace_any"))
 {
+    if (has_packets()) m_closest8 = m_program.kernel("trace_closest8");
 }
 
 void OclTracer::upload(const std::vector<dev::GcRay>& rays)
@@ -41,6 +42,37 @@ std::vector<double> OclTracer::closest(const std::vector<dev::GcRay>& rays, int 
     for (int r = 0; r < repeats; ++r) {
         const auto start = Clock::now();
         m_closest.launch(m_context, count, 0, "benchmark closest hits");
+        m_context.finish();
+        times.push_back(seconds_since(start));
+    }
+    std::vector<dev::GcHit> hits(rays.size());
+    m_hits.read(hits, 0);
+    for (std::size_t i = 0; i < hits.size(); ++i) prims[i] = hits[i].prim;
+    return times;
+}
+
+std::vector<double> OclTracer::closest_packets(const std::vector<dev::GcRay>& rays, int repeats,
+                                               std::vector<std::uint32_t>& prims)
+{
+    prims.assign(rays.size(), GC_INVALID);
+    std::vector<double> times;
+    if (rays.empty() || !has_packets()) return times;
+    const std::size_t packets = (rays.size() + 7) / 8;
+    std::vector<dev::GcRay> lanes(rays);
+    lanes.resize(packets * 8, rays.back());  // idle lanes: copies, never traced
+    std::vector<int> active(lanes.size(), 0);
+    std::fill_n(active.begin(), rays.size(), 1);
+    upload(lanes);
+    if (m_active.count() < active.size())
+        m_active = cl::Buffer<int>::create(m_context, active.size(), CL_MEM_READ_ONLY, "bench packet lanes");
+    m_active.write(active);
+    const auto count = static_cast<std::uint32_t>(packets);
+    m_closest8.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_active, m_hits, count);
+    m_closest8.launch(m_context, count, 0, "benchmark closest hits, packets of eight");
+    m_context.finish();
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = Clock::now();
+        m_closest8.launch(m_context, count, 0, "benchmark closest hits, packets of eight");
         m_context.finish();
         times.push_back(seconds_since(start));
     }

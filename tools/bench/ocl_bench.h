@@ -32,6 +32,14 @@ public:
     std::vector<double> closest(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& prims);
     std::vector<double> occluded(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& flags);
 
+    // Whether closest hits can also be traced eight neighbouring rays at a time as one packet
+    // (trace.cl's trace_closest8, gc_packet8.h): on the BVH8, where the CPU path megakernel
+    // traces its camera rays that way. Embree's counterpart is rtcIntersect16.
+    bool has_packets() const { return m_bvh.layout() == BvhLayout::Wide8; }
+    // As closest(), rays 8 i .. 8 i + 7 in packet i (the last one padded with idle lanes).
+    std::vector<double> closest_packets(const std::vector<dev::GcRay>& rays, int repeats,
+                                        std::vector<std::uint32_t>& prims);
+
 private:
     void upload(const std::vector<dev::GcRay>& rays);
 
@@ -40,7 +48,9 @@ private:
     cl::Program m_program;
     cl::Kernel m_closest;
     cl::Kernel m_any;
+    cl::Kernel m_closest8;  // has_packets() only
     cl::Buffer<dev::GcRay> m_rays;
+    cl::Buffer<int> m_active;  // trace_closest8's lane mask
     cl::Buffer<dev::GcHit> m_hits;
     cl::Buffer<std::uint32_t> m_flags;
 };
