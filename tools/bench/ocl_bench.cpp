@@ -28,26 +28,40 @@ void OclTracer::upload(const std::vector<dev::GcRay>& rays)
     m_rays.write(rays);
 }
 
+// One untimed launch of `kernel` (its arguments set) over `count` work-items, then `repeats`
+// timed ones, each to the end of the device's work.
+std::vector<double> OclTracer::timed_launches(cl::Kernel& kernel, std::uint32_t count, int repeats,
+                                              const char* what)
+{
+    kernel.launch(m_context, count, 0, what);
+    m_context.finish();
+    std::vector<double> times;
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = Clock::now();
+        kernel.launch(m_context, count, 0, what);
+        m_context.finish();
+        times.push_back(seconds_since(start));
+    }
+    return times;
+}
+
+void OclTracer::read_prims(std::vector<std::uint32_t>& prims) const
+{
+    std::vector<dev::GcHit> hits(prims.size());
+    m_hits.read(hits, 0);
+    for (std::size_t i = 0; i < hits.size(); ++i) prims[i] = hits[i].prim;
+}
+
 std::vector<double> OclTracer::closest(const std::vector<dev::GcRay>& rays, int repeats,
                                        std::vector<std::uint32_t>& prims)
 {
     prims.assign(rays.size(), GC_INVALID);
-    std::vector<double> times;
-    if (rays.empty()) return times;
+    if (rays.empty()) return {};
     upload(rays);
     const auto count = static_cast<std::uint32_t>(rays.size());
     m_closest.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_hits, count);
-    m_closest.launch(m_context, count, 0, "benchmark closest hits");
-    m_context.finish();
-    for (int r = 0; r < repeats; ++r) {
-        const auto start = Clock::now();
-        m_closest.launch(m_context, count, 0, "benchmark closest hits");
-        m_context.finish();
-        times.push_back(seconds_since(start));
-    }
-    std::vector<dev::GcHit> hits(rays.size());
-    m_hits.read(hits, 0);
-    for (std::size_t i = 0; i < hits.size(); ++i) prims[i] = hits[i].prim;
+    const std::vector<double> times = timed_launches(m_closest, count, repeats, "benchmark closest hits");
+    read_prims(prims);
     return times;
 }
 
@@ -55,8 +69,7 @@ std::vector<double> OclTracer::closest_packets(const std::vector<dev::GcRay>& ra
                                                std::vector<std::uint32_t>& prims)
 {
     prims.assign(rays.size(), GC_INVALID);
-    std::vector<double> times;
-    if (rays.empty() || !has_packets()) return times;
+    if (rays.empty() || !has_packets()) return {};
     const std::size_t packets = (rays.size() + 7) / 8;
     std::vector<dev::GcRay> lanes(rays);
     lanes.resize(packets * 8, rays.back());  // idle lanes: copies, never traced
@@ -68,17 +81,9 @@ std::vector<double> OclTracer::closest_packets(const std::vector<dev::GcRay>& ra
     m_active.write(active);
     const auto count = static_cast<std::uint32_t>(packets);
     m_closest8.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_active, m_hits, count);
-    m_closest8.launch(m_context, count, 0, "benchmark closest hits, packets of eight");
-    m_context.finish();
-    for (int r = 0; r < repeats; ++r) {
-        const auto start = Clock::now();
-        m_closest8.launch(m_context, count, 0, "benchmark closest hits, packets of eight");
-        m_context.finish();
-        times.push_back(seconds_since(start));
-    }
-    std::vector<dev::GcHit> hits(rays.size());
-    m_hits.read(hits, 0);
-    for (std::size_t i = 0; i < hits.size(); ++i) prims[i] = hits[i].prim;
+    const std::vector<double> times =
+        timed_launches(m_closest8, count, repeats, "benchmark closest hits, packets of eight");
+    read_prims(prims);
     return times;
 }
 
@@ -86,19 +91,11 @@ std::vector<double> OclTracer::occluded(const std::vector<dev::GcRay>& rays, int
                                         std::vector<std::uint32_t>& flags)
 {
     flags.assign(rays.size(), 0u);
-    std::vector<double> times;
-    if (rays.empty()) return times;
+    if (rays.empty()) return {};
     upload(rays);
     const auto count = static_cast<std::uint32_t>(rays.size());
     m_any.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_flags, count);
-    m_any.launch(m_context, count, 0, "benchmark any hits");
-    m_context.finish();
-    for (int r = 0; r < repeats; ++r) {
-        const auto start = Clock::now();
-        m_any.launch(m_context, count, 0, "benchmark any hits");
-        m_context.finish();
-        times.push_back(seconds_since(start));
-    }
+    const std::vector<double> times = timed_launches(m_any, count, repeats, "benchmark any hits");
     m_flags.read(flags, 0);
     return times;
 }

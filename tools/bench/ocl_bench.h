@@ -42,6 +42,8 @@ public:
 
 private:
     void upload(const std::vector<dev::GcRay>& rays);
+    std::vector<double> timed_launches(cl::Kernel& kernel, std::uint32_t count, int repeats, const char* what);
+    void read_prims(std::vector<std::uint32_t>& prims) const;  // prims.size() hits' primitives
 
     const cl::Context& m_context;
     DeviceBvh m_bvh;  // before m_program: its layout picks the traversal compiled
