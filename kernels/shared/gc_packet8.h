@@ -59,6 +59,15 @@ typedef struct {
     float8 margin, tmin;
     uint8 kx, ky, kz;     /* kz: the axis of the largest |direction| component */
     int8 pos_x, pos_y, pos_z; /* 1 / direction >= 0: the near plane is the box's low one */
+    /* Where every lane has the same (kx, ky, kz), as the camera rays of one pixel or of
+     * neighbouring pixels do, the triangle test picks the vertices' components once, in
+     * scalar, instead of per lane: shared_axes, those axes, and the origins in that order. */
+    bool shared_axes;
+    uint axis_x, axis_y, axis_z;
+    float8 okx, oky, okz;
+    /* Likewise where every lane's direction has the same signs: the box test reads each
+     * axis's near and far plane once instead of selecting per lane. */
+    bool shared_signs;
 } GcPacketPre8;
 
 /* One of three per-axis values by a per-lane axis index. */
@@ -112,6 +121,15 @@ GC_FUNC GcPacketPre8 gc_packet_precompute8(GcRays8 rays, float extent)
     r.pos_x = r.ix >= 0.0f;
     r.pos_y = r.iy >= 0.0f;
     r.pos_z = r.iz >= 0.0f;
+    r.axis_x = r.kx.s0;
+    r.axis_y = r.ky.s0;
+    r.axis_z = r.kz.s0;
+    r.shared_axes = all(r.kz == (uint8)(r.axis_z)) && all(r.kx == (uint8)(r.axis_x));
+    r.okx = gc_axis8(r.kx, rays.ox, rays.oy, rays.oz);
+    r.oky = gc_axis8(r.ky, rays.ox, rays.oy, rays.oz);
+    r.okz = gc_axis8(r.kz, rays.ox, rays.oy, rays.oz);
+    r.shared_signs = all(r.pos_x == (int8)(r.pos_x.s0)) && all(r.pos_y == (int8)(r.pos_y.s0)) &&
+                     all(r.pos_z == (int8)(r.pos_z.s0));
     return r;
 }
 
@@ -141,17 +159,39 @@ GC_FUNC void gc_packet_load_node8(GC_GLOBAL const GcBvh8Node* n, GcPacketNode8* 
     vstore8((uint8)(n->child0, n->child1), 0, out->child);
 }
 
-/* A leaf block's four triangles, stored for scalar reads of one triangle at a time. */
+/* For packets with shared signs: each axis's planes as the lanes meet them, near then far
+ * (the near plane is the low one where the direction is not negative). */
 typedef struct {
-    float x0[4], y0[4], z0[4], x1[4], y1[4], z1[4], x2[4], y2[4], z2[4];
+    float near_x[8], far_x[8], near_y[8], far_y[8], near_z[8], far_z[8];
+    uint child[8];
+} GcPacketNearFar8;
+
+GC_FUNC void gc_packet_load_near_far8(GC_GLOBAL const GcBvh8Node* n, const GcPacketPre8* r, GcPacketNearFar8* out)
+{
+    const float8 lo_x = (float8)(n->lo_x0, n->lo_x1), hi_x = (float8)(n->hi_x0, n->hi_x1);
+    const float8 lo_y = (float8)(n->lo_y0, n->lo_y1), hi_y = (float8)(n->hi_y0, n->hi_y1);
+    const float8 lo_z = (float8)(n->lo_z0, n->lo_z1), hi_z = (float8)(n->hi_z0, n->hi_z1);
+    vstore8(r->pos_x.s0 ? lo_x : hi_x, 0, out->near_x);
+    vstore8(r->pos_x.s0 ? hi_x : lo_x, 0, out->far_x);
+    vstore8(r->pos_y.s0 ? lo_y : hi_y, 0, out->near_y);
+    vstore8(r->pos_y.s0 ? hi_y : lo_y, 0, out->far_y);
+    vstore8(r->pos_z.s0 ? lo_z : hi_z, 0, out->near_z);
+    vstore8(r->pos_z.s0 ? hi_z : lo_z, 0, out->far_z);
+    vstore8((uint8)(n->child0, n->child1), 0, out->child);
+}
+
+/* A leaf block's four triangles, stored for scalar reads of one triangle at a time:
+ * v[corner][axis][triangle]. */
+typedef struct {
+    float v[3][3][4];
     uint prim[4], flags[4];
 } GcPacketBlock4;
 
 GC_FUNC void gc_packet_load_block4(GC_GLOBAL const GcTriangle4* q, GcPacketBlock4* out)
 {
-    vstore4(q->v0x, 0, out->x0); vstore4(q->v0y, 0, out->y0); vstore4(q->v0z, 0, out->z0);
-    vstore4(q->v1x, 0, out->x1); vstore4(q->v1y, 0, out->y1); vstore4(q->v1z, 0, out->z1);
-    vstore4(q->v2x, 0, out->x2); vstore4(q->v2y, 0, out->y2); vstore4(q->v2z, 0, out->z2);
+    vstore4(q->v0x, 0, out->v[0][0]); vstore4(q->v0y, 0, out->v[0][1]); vstore4(q->v0z, 0, out->v[0][2]);
+    vstore4(q->v1x, 0, out->v[1][0]); vstore4(q->v1y, 0, out->v[1][1]); vstore4(q->v1z, 0, out->v[1][2]);
+    vstore4(q->v2x, 0, out->v[2][0]); vstore4(q->v2y, 0, out->v[2][1]); vstore4(q->v2z, 0, out->v[2][2]);
     vstore4(q->prim, 0, out->prim);
     vstore4(q->flags, 0, out->flags);
 }
@@ -173,23 +213,36 @@ GC_FUNC float8 gc_packet_box_entry8(const GcPacketPre8* r, const GcPacketNode8* 
     return entry;
 }
 
+/* gc_packet_box_entry8 for packets with shared signs: the same operations per lane, on the
+ * planes gc_packet_load_near_far8 put in order. */
+GC_FUNC float8 gc_packet_box_entry8_shared_signs(const GcPacketPre8* r, const GcPacketNearFar8* n, uint c,
+                                                 float8 t_best, int8* hit)
+{
+    const float8 nx = (float8)(n->near_x[c]) - r->ox;
+    const float8 fx = (float8)(n->far_x[c]) - r->ox;
+    const float8 ny = (float8)(n->near_y[c]) - r->oy;
+    const float8 fy = (float8)(n->far_y[c]) - r->oy;
+    const float8 nz = (float8)(n->near_z[c]) - r->oz;
+    const float8 fz = (float8)(n->far_z[c]) - r->oz;
+    const float8 tnear = gc_max_keep8(nz * r->iz, gc_max_keep8(ny * r->iy, gc_max_keep8(nx * r->ix, r->tmin)));
+    const float8 tfar = gc_min_keep8(fz * r->iz, gc_min_keep8(fy * r->iy, gc_min_keep8(fx * r->ix, t_best)));
+    const float8 entry = tnear - r->margin;
+    *hit = entry <= tfar * GC_BOX_TFAR_SCALE;
+    return entry;
+}
+
 /* Triangle (a, b, c) against the eight rays: lane k of gc_intersect_triangle4 for ray k, the
  * noise floor included. Returns the `active` rays that hit it with t in [t_min, t_best]. */
-GC_FUNC int8 gc_packet_triangle8(const GcPacketPre8* r, float3 pa, float3 pb, float3 pc, float8 t_best, int8 active,
-                                 float8* t, float8* u, float8* v)
+GC_FUNC int8 gc_packet_triangle8_sheared(const GcPacketPre8* r, float8 akx, float8 aky, float8 akz, float8 bkx,
+                                         float8 bky, float8 bkz, float8 ckx, float8 cky, float8 ckz, float8 t_best,
+                                         int8 active, float8* t, float8* u, float8* v)
 {
-    const float8 a0 = pa.x - r->ox, a1 = pa.y - r->oy, a2 = pa.z - r->oz;
-    const float8 b0 = pb.x - r->ox, b1 = pb.y - r->oy, b2 = pb.z - r->oz;
-    const float8 c0 = pc.x - r->ox, c1 = pc.y - r->oy, c2 = pc.z - r->oz;
-    const float8 az = gc_axis8(r->kz, a0, a1, a2);
-    const float8 bz = gc_axis8(r->kz, b0, b1, b2);
-    const float8 cz = gc_axis8(r->kz, c0, c1, c2);
-    const float8 ax = gc_axis8(r->kx, a0, a1, a2) - r->sx * az;
-    const float8 ay = gc_axis8(r->ky, a0, a1, a2) - r->sy * az;
-    const float8 bx = gc_axis8(r->kx, b0, b1, b2) - r->sx * bz;
-    const float8 by = gc_axis8(r->ky, b0, b1, b2) - r->sy * bz;
-    const float8 cx = gc_axis8(r->kx, c0, c1, c2) - r->sx * cz;
-    const float8 cy = gc_axis8(r->ky, c0, c1, c2) - r->sy * cz;
+    const float8 ax = akx - r->sx * akz;
+    const float8 ay = aky - r->sy * akz;
+    const float8 bx = bkx - r->sx * bkz;
+    const float8 by = bky - r->sy * bkz;
+    const float8 cx = ckx - r->sx * ckz;
+    const float8 cy = cky - r->sy * ckz;
     const float8 eu = cx * by - cy * bx;
     const float8 ev = ax * cy - ay * cx;
     const float8 ew = bx * ay - by * ax;
@@ -197,17 +250,45 @@ GC_FUNC int8 gc_packet_triangle8(const GcPacketPre8* r, float3 pa, float3 pb, fl
     const int8 inside = active & (((eu >= zero) & (ev >= zero) & (ew >= zero)) | ((eu <= zero) & (ev <= zero) & (ew <= zero)));
     if (!any(inside)) return inside;
     const float8 det = eu + ev + ew;
-    const float8 tz = eu * (r->sz * az) + ev * (r->sz * bz) + ew * (r->sz * cz);
+    const float8 tz = eu * (r->sz * akz) + ev * (r->sz * bkz) + ew * (r->sz * ckz);
     const float8 rcp = 1.0f / det;
     *t = tz * rcp;
     *u = ev * rcp;
     *v = ew * rcp;
     const int8 candidate = inside & (*t >= r->tmin) & (*t <= t_best);
     if (!any(candidate)) return candidate;
+    /* The noise floor's largest |component|: a maximum, so the axes' order does not matter. */
     const float8 s2 = gc_max8(gc_max8(gc_abs_max8(ax, ay), gc_abs_max8(bx, by)), gc_abs_max8(cx, cy));
-    const float8 s3 = gc_max8(gc_max8(gc_abs_max8(a0, b0), fabs(c0)),
-                              gc_max8(gc_max8(gc_abs_max8(a1, b1), fabs(c1)), gc_max8(gc_abs_max8(a2, b2), fabs(c2))));
+    const float8 s3 = gc_max8(gc_max8(gc_abs_max8(akx, bkx), fabs(ckx)),
+                              gc_max8(gc_max8(gc_abs_max8(aky, bky), fabs(cky)), gc_max8(gc_abs_max8(akz, bkz), fabs(ckz))));
     return candidate & (fabs(det) > GC_TRI_DET_EPS * (s2 * (s2 + s3)));
+}
+
+/* Corner `corner` of triangle k of a block, relative to the origins, one axis per lane's
+ * (kx, ky, kz) (gc_axis8) or, for packets with shared axes, read once in that order. */
+#define GC_PACKET_CORNER8(r, q, corner, k, rel_x, rel_y, rel_z)                                                  \
+    float8 rel_x, rel_y, rel_z;                                                                                  \
+    if ((r).shared_axes) {                                                                                       \
+        rel_x = (float8)((q).v[corner][(r).axis_x][k]) - (r).okx;                                                \
+        rel_y = (float8)((q).v[corner][(r).axis_y][k]) - (r).oky;                                                \
+        rel_z = (float8)((q).v[corner][(r).axis_z][k]) - (r).okz;                                                \
+    } else {                                                                                                     \
+        const float8 d0 = (float8)((q).v[corner][0][k]) - (r).ox;                                                \
+        const float8 d1 = (float8)((q).v[corner][1][k]) - (r).oy;                                                \
+        const float8 d2 = (float8)((q).v[corner][2][k]) - (r).oz;                                                \
+        rel_x = gc_axis8((r).kx, d0, d1, d2);                                                                    \
+        rel_y = gc_axis8((r).ky, d0, d1, d2);                                                                    \
+        rel_z = gc_axis8((r).kz, d0, d1, d2);                                                                    \
+    }
+
+/* Triangle k of block q against the eight rays. */
+GC_FUNC int8 gc_packet_triangle8(const GcPacketPre8* r, const GcPacketBlock4* q, uint k, float8 t_best, int8 active,
+                                 float8* t, float8* u, float8* v)
+{
+    GC_PACKET_CORNER8(*r, *q, 0, k, akx, aky, akz)
+    GC_PACKET_CORNER8(*r, *q, 1, k, bkx, bky, bkz)
+    GC_PACKET_CORNER8(*r, *q, 2, k, ckx, cky, ckz)
+    return gc_packet_triangle8_sheared(r, akx, aky, akz, bkx, bky, bkz, ckx, cky, ckz, t_best, active, t, u, v);
 }
 
 /* Lanes of `take` whose candidate the alpha test cuts away are dropped (gc_alpha.h). */
@@ -245,12 +326,16 @@ GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
     for (;;) {
         if ((ref & GC_BVH4_LEAF) == 0u) {
             GcPacketNode8 n;
-            gc_packet_load_node8(&GC_BVH_NODE(ref), &n);
+            GcPacketNearFar8 nf;
+            if (r.shared_signs) gc_packet_load_near_far8(&GC_BVH_NODE(ref), &r, &nf);
+            else gc_packet_load_node8(&GC_BVH_NODE(ref), &n);
+            const uint* child = r.shared_signs ? nf.child : n.child;
             /* Pushed farthest first (insertion by entry), so the nearest is popped next. */
             const uint base = sp;
             for (uint c = 0u; c < 8u; ++c) {
                 int8 hit;
-                const float8 entry = gc_packet_box_entry8(&r, &n, c, t_best, &hit);
+                const float8 entry = r.shared_signs ? gc_packet_box_entry8_shared_signs(&r, &nf, c, t_best, &hit)
+                                                    : gc_packet_box_entry8(&r, &n, c, t_best, &hit);
                 hit &= active;
                 if (!any(hit) || sp >= GC_BVH8_STACK_SIZE) continue;
                 const float e = gc_reduce_min8(select((float8)(GC_AABB_MISS), entry, hit));
@@ -261,7 +346,7 @@ GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
                     --j;
                 }
                 stack_entry[j] = e;
-                stack_ref[j] = n.child[c];
+                stack_ref[j] = child[c];
             }
         } else {
             const uint first = ref & GC_BVH4_LEAF_FIRST_MASK;
@@ -272,8 +357,7 @@ GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
                 for (uint k = 0u; k < 4u; ++k) {
                     if (q.prim[k] == GC_INVALID) continue;
                     float8 t, u, v;
-                    const int8 hit = gc_packet_triangle8(&r, (float3)(q.x0[k], q.y0[k], q.z0[k]), (float3)(q.x1[k], q.y1[k], q.z1[k]),
-                                                         (float3)(q.x2[k], q.y2[k], q.z2[k]), t_best, active, &t, &u, &v);
+                    const int8 hit = gc_packet_triangle8(&r, &q, k, t_best, active, &t, &u, &v);
                     if (!any(hit)) continue;
                     const uint8 prim = (uint8)(q.prim[k]);
                     int8 take = hit & ((t < t_best) | ((t == t_best) & (prim < best.prim)));

@@ -264,8 +264,7 @@ static vi pk_occluded8(GC_BVH_PARAMS, V3 o, V3 d, vf tmax, vi active)
                 for (uint k = 0u; k < 4u; ++k) {
                     if (q.prim[k] == GC_INVALID) continue;
                     vf t, u, v;
-                    const vi hit = gc_packet_triangle8(&r, (float3)(q.x0[k], q.y0[k], q.z0[k]), (float3)(q.x1[k], q.y1[k], q.z1[k]),
-                                                       (float3)(q.x2[k], q.y2[k], q.z2[k]), tmax, active, &t, &u, &v);
+                    const vi hit = gc_packet_triangle8(&r, &q, k, tmax, active, &t, &u, &v);
                     occluded |= hit;
                     active &= ~hit;
                 }
