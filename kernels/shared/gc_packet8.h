@@ -68,6 +68,13 @@ typedef struct {
     /* Likewise where every lane's direction has the same signs: the box test reads each
      * axis's near and far plane once instead of selecting per lane. */
     bool shared_signs;
+    /* Where, besides, the active lanes share one origin and every 1/direction is finite (a
+     * pinhole camera's rays): the bounds over those lanes that gc_packet_node_cull8 tests a
+     * node's eight boxes against at once (gc_packet_cull_setup8). */
+    bool node_cull;
+    float cull_ox, cull_oy, cull_oz;
+    float ix_lo, ix_hi, iy_lo, iy_hi, iz_lo, iz_hi;
+    float tmin_lo, margin_hi;
 } GcPacketPre8;
 
 /* One of three per-axis values by a per-lane axis index. */
@@ -131,6 +138,30 @@ GC_FUNC GcPacketPre8 gc_packet_precompute8(GcRays8 rays, float extent)
     r.shared_signs = all(r.pos_x == (int8)(r.pos_x.s0)) && all(r.pos_y == (int8)(r.pos_y.s0)) &&
                      all(r.pos_z == (int8)(r.pos_z.s0));
     return r;
+}
+
+GC_FUNC float gc_lanes_min8(float8 v, int8 active) { return gc_reduce_min8(select((float8)(GC_INFINITY), v, active)); }
+GC_FUNC float gc_lanes_max8(float8 v, int8 active) { return gc_reduce_max8(select((float8)(-GC_INFINITY), v, active)); }
+
+/* The node cull's bounds over the active lanes, where they apply (GcPacketPre8.node_cull). */
+GC_FUNC void gc_packet_cull_setup8(GcPacketPre8* r, int8 active)
+{
+    r->cull_ox = gc_lanes_min8(r->ox, active);
+    r->cull_oy = gc_lanes_min8(r->oy, active);
+    r->cull_oz = gc_lanes_min8(r->oz, active);
+    const int8 same_origin = (r->ox == (float8)(r->cull_ox)) & (r->oy == (float8)(r->cull_oy)) &
+                             (r->oz == (float8)(r->cull_oz));
+    const float8 inf = (float8)(GC_INFINITY);
+    const int8 finite = (fabs(r->ix) < inf) & (fabs(r->iy) < inf) & (fabs(r->iz) < inf);
+    r->node_cull = r->shared_signs && all(same_origin | ~active) && all(finite | ~active);
+    r->ix_lo = gc_lanes_min8(r->ix, active);
+    r->ix_hi = gc_lanes_max8(r->ix, active);
+    r->iy_lo = gc_lanes_min8(r->iy, active);
+    r->iy_hi = gc_lanes_max8(r->iy, active);
+    r->iz_lo = gc_lanes_min8(r->iz, active);
+    r->iz_hi = gc_lanes_max8(r->iz, active);
+    r->tmin_lo = gc_lanes_min8(r->tmin, active);
+    r->margin_hi = gc_lanes_max8(r->margin, active);
 }
 
 /* gc_ray_is_valid per lane. */
@@ -231,6 +262,37 @@ GC_FUNC float8 gc_packet_box_entry8_shared_signs(const GcPacketPre8* r, const Gc
     return entry;
 }
 
+/* The children of a node that some active lane may enter (lane c for child c), for packets
+ * with GcPacketPre8.node_cull: one test of the eight boxes, as a single ray's, on bounds that
+ * hold for every lane, so that the per-lane test runs only for boxes that pass.
+ *
+ * Exact, not heuristic: a lane's slab distance is (plane - origin) * (1 / direction), one
+ * rounding each. The difference is the same float in every lane (one origin), and a rounded
+ * product is monotonic in each factor, so the smaller and larger of the products with the
+ * lanes' least and greatest 1 / direction bound every lane's product. The entry (largest
+ * near distance, at least t_min, less the margin) and the exit (smallest far distance, at
+ * most t_best, times GC_BOX_TFAR_SCALE) are monotonic too. So a box whose lowest possible
+ * entry exceeds its highest possible exit is one that gc_packet_box_entry8 misses in every
+ * lane; any other box still goes to that test. No NaN can arise: the inverses are finite. */
+GC_FUNC int8 gc_packet_node_cull8(const GcPacketPre8* r, const GcPacketNearFar8* n, float t_best_hi)
+{
+    const float8 nx = vload8(0, n->near_x) - r->cull_ox;
+    const float8 fx = vload8(0, n->far_x) - r->cull_ox;
+    const float8 ny = vload8(0, n->near_y) - r->cull_oy;
+    const float8 fy = vload8(0, n->far_y) - r->cull_oy;
+    const float8 nz = vload8(0, n->near_z) - r->cull_oz;
+    const float8 fz = vload8(0, n->far_z) - r->cull_oz;
+    float8 entry_lo = (float8)(r->tmin_lo);
+    entry_lo = fmax(entry_lo, fmin(nx * r->ix_lo, nx * r->ix_hi));
+    entry_lo = fmax(entry_lo, fmin(ny * r->iy_lo, ny * r->iy_hi));
+    entry_lo = fmax(entry_lo, fmin(nz * r->iz_lo, nz * r->iz_hi));
+    float8 exit_hi = (float8)(t_best_hi);
+    exit_hi = fmin(exit_hi, fmax(fx * r->ix_lo, fx * r->ix_hi));
+    exit_hi = fmin(exit_hi, fmax(fy * r->iy_lo, fy * r->iy_hi));
+    exit_hi = fmin(exit_hi, fmax(fz * r->iz_lo, fz * r->iz_hi));
+    return (entry_lo - r->margin_hi) <= exit_hi * GC_BOX_TFAR_SCALE;
+}
+
 /* Triangle (a, b, c) against the eight rays: lane k of gc_intersect_triangle4 for ray k, the
  * noise floor included. Returns the `active` rays that hit it with t in [t_min, t_best]. */
 GC_FUNC int8 gc_packet_triangle8_sheared(const GcPacketPre8* r, float8 akx, float8 aky, float8 akz, float8 bkx,
@@ -317,7 +379,8 @@ GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
     best.prim = (uint8)(GC_INVALID);
     const int8 active = rays.active & gc_packet_valid8(rays);
     if (!any(active)) return best;
-    const GcPacketPre8 r = gc_packet_precompute8(rays, gc_as_float(GC_BVH_NODE(0u).pad0.x));
+    GcPacketPre8 r = gc_packet_precompute8(rays, gc_as_float(GC_BVH_NODE(0u).pad0.x));
+    gc_packet_cull_setup8(&r, active);
     float8 t_best = rays.tmax;
     uint stack_ref[GC_BVH8_STACK_SIZE];
     float stack_entry[GC_BVH8_STACK_SIZE];
@@ -330,9 +393,12 @@ GC_FUNC GcHits8 gc_trace_closest8(GC_BVH_PARAMS, GcRays8 rays)
             if (r.shared_signs) gc_packet_load_near_far8(&GC_BVH_NODE(ref), &r, &nf);
             else gc_packet_load_node8(&GC_BVH_NODE(ref), &n);
             const uint* child = r.shared_signs ? nf.child : n.child;
+            int maybe[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+            if (r.node_cull) vstore8(gc_packet_node_cull8(&r, &nf, gc_lanes_max8(t_best, active)), 0, maybe);
             /* Pushed farthest first (insertion by entry), so the nearest is popped next. */
             const uint base = sp;
             for (uint c = 0u; c < 8u; ++c) {
+                if (maybe[c] == 0) continue;
                 int8 hit;
                 const float8 entry = r.shared_signs ? gc_packet_box_entry8_shared_signs(&r, &nf, c, t_best, &hit)
                                                     : gc_packet_box_entry8(&r, &n, c, t_best, &hit);
