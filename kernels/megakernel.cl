@@ -1,8 +1,8 @@
 /*
  * megakernel.cl — the path integrator as one kernel: one work-item per pixel of the batch
  * (or per few neighbours, below) traces that pixel's samples of the pass one after the other,
- * each path from camera to termination (generate -> [extend -> shade -> shadow]* -> accumulate of wavefront.cl in a
- * loop, as the Vulkan reference kernels/vk/path.comp does).
+ * each path from camera to termination (generate -> [extend -> shade -> shadow]* ->
+ * accumulate of wavefront.cl in a loop, as the Vulkan reference kernels/vk/path.comp does).
  *
  * Why a second form: on CPUs (PoCL) the wavefront's ~30 launches, queue atomics, counter
  * read-backs and path-state round trips through memory per pass cost more than the
