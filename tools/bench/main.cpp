@@ -203,19 +203,9 @@ double agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uin
     return double(same) / double(a.size());
 }
 
-// A CPU device's timings, in rounds interleaved with Embree on the same cores: each round
-// times Embree's single-ray and 16-wide calls and then the device once in each of its forms
-// (single rays, and for closest hits on the BVH8 packets of eight), so a change in the
-// machine's load between them hits both sides alike. (Separate runs, Embree's first, moved the
-// ratio by up to 1.6x between runs a minute apart on a shared VM.)
-struct InterleavedRays {
-    std::vector<double> single_seconds;  // one per round
-    std::vector<double> packet_seconds;  // one per round where the device traces packets
-    double ratio_to_embree = 0.0;        // median of the per-round ratios, our faster form to Embree's
-};
-
 // Our forms of tracing `kind`: single rays, and packets of eight where the tracer has them
-// (closest hits only: there is no any-hit packet). Each call traces the set `repeats` times.
+// (closest hits only: there is no any-hit packet). Seconds: one entry per timed trace of the
+// set; results: the last trace's.
 struct DeviceRays {
     std::vector<double> single_seconds;
     std::vector<double> packet_seconds;
@@ -225,24 +215,31 @@ struct DeviceRays {
 
 bool traces_packets(const RayKind& kind, const OclTracer& tracer) { return !kind.any && tracer.has_packets(); }
 
-DeviceRays trace_on_device(const RayKind& kind, OclTracer& tracer, int repeats)
+// Traces the set `repeats` times in each form, appending to `out`; returns our faster form's
+// rays per second in the last of them.
+double trace_on_device(const RayKind& kind, OclTracer& tracer, int repeats, DeviceRays& out)
 {
-    DeviceRays out;
-    out.single_seconds = kind.any ? tracer.occluded(*kind.rays, repeats, out.single_result)
-                                  : tracer.closest(*kind.rays, repeats, out.single_result);
-    if (traces_packets(kind, tracer)) out.packet_seconds = tracer.closest_packets(*kind.rays, repeats, out.packet_result);
-    return out;
+    const double n = double(kind.rays->size());
+    const std::vector<double> single = kind.any ? tracer.occluded(*kind.rays, repeats, out.single_result)
+                                                : tracer.closest(*kind.rays, repeats, out.single_result);
+    out.single_seconds.insert(out.single_seconds.end(), single.begin(), single.end());
+    double best = single.empty() || !(single.back() > 0.0) ? 0.0 : n / single.back();
+    if (traces_packets(kind, tracer)) {
+        const std::vector<double> packets = tracer.closest_packets(*kind.rays, repeats, out.packet_result);
+        out.packet_seconds.insert(out.packet_seconds.end(), packets.begin(), packets.end());
+        if (!packets.empty() && packets.back() > 0.0) best = std::max(best, n / packets.back());
+    }
+    return best;
 }
 
-double rays_per_second(const RayKind& kind, const std::vector<double>& seconds)
+// A CPU device's timings, in rounds interleaved with Embree on the same cores: each round
+// times Embree's single-ray and 16-wide calls and then the device once in each of its forms,
+// so a change in the machine's load between them hits both sides alike. (Separate runs,
+// Embree's first, moved the ratio by up to 1.6x between runs a minute apart on a shared VM.)
+// Returns the median of the per-round ratios, our faster form to Embree's.
+double trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads, int rounds,
+                         DeviceRays& result)
 {
-    return seconds.empty() || !(seconds[0] > 0.0) ? 0.0 : double(kind.rays->size()) / seconds[0];
-}
-
-InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads,
-                                  int rounds, DeviceRays& result)
-{
-    InterleavedRays out;
     std::vector<double> ratios;
     std::vector<std::uint32_t> embree_scratch;
     for (int r = 0; r < rounds; ++r) {
@@ -252,14 +249,10 @@ InterleavedRays trace_interleaved(const RayKind& kind, const EmbreeTracer& embre
                                       : embree.closest(*kind.rays, threads, width, embree_scratch);
             embree_best = std::max(embree_best, double(kind.rays->size()) / t);
         }
-        result = trace_on_device(kind, tracer, 1);
-        out.single_seconds.insert(out.single_seconds.end(), result.single_seconds.begin(), result.single_seconds.end());
-        out.packet_seconds.insert(out.packet_seconds.end(), result.packet_seconds.begin(), result.packet_seconds.end());
-        const double ours = std::max(rays_per_second(kind, result.single_seconds), rays_per_second(kind, result.packet_seconds));
+        const double ours = trace_on_device(kind, tracer, 1, result);
         if (ours > 0.0) ratios.push_back(ours / embree_best);
     }
-    out.ratio_to_embree = ratios.empty() ? 0.0 : median(ratios);
-    return out;
+    return ratios.empty() ? 0.0 : median(ratios);
 }
 
 void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
@@ -318,14 +311,8 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
             const bool interleave = embree && !d.info.is_gpu;
             DeviceRays traced;
             double to_embree = 0.0;
-            if (interleave) {
-                InterleavedRays rounds = trace_interleaved(kind, *embree, tracer, threads, repeats, traced);
-                traced.single_seconds = std::move(rounds.single_seconds);
-                traced.packet_seconds = std::move(rounds.packet_seconds);
-                to_embree = rounds.ratio_to_embree;
-            } else {
-                traced = trace_on_device(kind, tracer, repeats);
-            }
+            if (interleave) to_embree = trace_interleaved(kind, *embree, tracer, threads, repeats, traced);
+            else trace_on_device(kind, tracer, repeats, traced);
             const auto mrays_of = [&](const std::vector<double>& t) {
                 return t.empty() ? 0.0 : double(kind.rays->size()) / median(t) / 1e6;
             };
@@ -336,12 +323,11 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
             // Packets must find the single rays' hits (gc_packet8.h promises the same bits; the
             // device tests check it on test rays, this on every bench set).
             if (traces_packets(kind, tracer) && traced.packet_result != traced.single_result) {
-                std::size_t differ = 0;
-                for (std::size_t i = 0; i < traced.single_result.size(); ++i)
-                    differ += traced.packet_result[i] != traced.single_result[i];
-                throw std::runtime_error(s.name + ", " + d.label() + ": packets of eight found other hits than single rays on " +
-                                         std::to_string(differ) + " of " + std::to_string(traced.single_result.size()) +
-                                         " " + kind.name + " rays");
+                char buffer[160];
+                std::snprintf(buffer, sizeof buffer, "packets of eight found the single rays' hits on only %.3f%% of %zu %s rays",
+                              100.0 * agreement(traced.packet_result, traced.single_result), traced.single_result.size(),
+                              kind.name);
+                throw std::runtime_error(s.name + ", " + d.label() + ": " + buffer);
             }
             const std::vector<std::uint32_t>& result = traced.single_result;
             json& j = out["rays"][kind.name]["devices"][d.label()];
