@@ -236,7 +236,7 @@ Rendering:
       --wavefront-size N   paths in flight per pass (default: chosen for the device)
       --samples-per-pass N at most N samples per pixel in one pass (default: on CPUs as
                            many as fill half a second, growing to two in long renders, up
-                           to 16; on GPUs as many as the wavefront holds); the image is
+                           to 256; on GPUs as many as the wavefront holds); the image is
                            the same bits either way
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)

@@ -28,12 +28,26 @@ std::vector<std::uint32_t> plan(PassPlanner& planner, std::uint32_t spp, double 
     return passes;
 }
 
+// 1, 2, 4 ... kMaxSamples: the passes of a plan that doubles up to the cap (together
+// 2 kMaxSamples - 1 samples).
+std::vector<std::uint32_t> doubling_to_the_cap()
+{
+    std::vector<std::uint32_t> passes;
+    for (std::uint32_t n = 1; n <= PassPlanner::kMaxSamples; n *= 2) passes.push_back(n);
+    return passes;
+}
+
 TEST(PassPlanner, QuickSamplesDoubleUpToTheCap)
 {
+    // 1 ms per sample: the half-second target holds 500, more than the cap.
+    constexpr std::uint32_t cap = PassPlanner::kMaxSamples;
+    static_assert(cap < 500);
     PassPlanner planner;
     EXPECT_FALSE(planner.settled());
-    const std::vector<std::uint32_t> passes = plan(planner, 64, 0.001);
-    EXPECT_EQ(passes, (std::vector<std::uint32_t>{1, 2, 4, 8, 16, 16, 16, 1}));
+    const std::vector<std::uint32_t> passes = plan(planner, 4 * cap, 0.001);
+    std::vector<std::uint32_t> expected = doubling_to_the_cap();
+    expected.insert(expected.end(), {cap, cap, 1u});
+    EXPECT_EQ(passes, expected);
     EXPECT_TRUE(planner.settled());
 }
 
@@ -61,8 +75,8 @@ TEST(PassPlanner, ASlowFirstPassDoesNotSettleThePlan)
     planner.record(planner.next(100), 3.0);
     EXPECT_EQ(planner.next(100), 1u);
     EXPECT_FALSE(planner.settled());
-    const std::vector<std::uint32_t> passes = plan(planner, 31, 0.001);
-    EXPECT_EQ(passes, (std::vector<std::uint32_t>{1, 2, 4, 8, 16}));
+    const std::vector<std::uint32_t> passes = plan(planner, 2 * PassPlanner::kMaxSamples - 1, 0.001);
+    EXPECT_EQ(passes, doubling_to_the_cap());
     EXPECT_TRUE(planner.settled());
 }
 
@@ -70,7 +84,7 @@ TEST(PassPlanner, ASlowPassShrinksTheNext)
 {
     PassPlanner planner;
     plan(planner, 31, 0.001);  // 1, 2, 4, 8, 16
-    EXPECT_EQ(planner.next(100), 16u);
+    EXPECT_EQ(planner.next(100), 32u);
     planner.record(16, 16 * 0.2);  // the machine got busy: 0.2 s per sample
     EXPECT_EQ(planner.next(100), 2u);
 }

@@ -13,13 +13,15 @@ out=${OUT:-$root/out}
 mkdir -p "$out"
 [ -f build/bare/CMakeCache.txt ] || { echo "build/bare is not configured: run tools/device/build-and-test.sh first" >&2; exit 2; }
 
+# A bench built with the carried Embree (tools/device/build-and-test.sh) loads it from there.
+# Unpacked before the configure too: a later call's carry replaces .deps/ and with it the
+# unpacked library, which Embree's CMake files then reject.
+# shellcheck source=tools/device/embree-env.sh
+source "$root/tools/device/embree-env.sh"
 cmake -S . -B build/bare -DGEOCOLD_BUILD_BENCH=ON > "$out/bench-configure.log"
 cmake --build build/bare --target geocold-bench -j "$(nproc)" > "$out/bench-build.log" 2>&1 ||
     { tail -50 "$out/bench-build.log" >&2; exit 3; }
 
-# A bench built with the carried Embree (tools/device/build-and-test.sh) loads it from there.
-# shellcheck source=tools/device/embree-env.sh
-source "$root/tools/device/embree-env.sh"
 if [ -z "${GEOCOLD_SHARED_DIR:-}" ]; then
     for d in "$root/shared" "$root/../shared"; do
         if [ -d "$d/scenes" ]; then export GEOCOLD_SHARED_DIR="$d"; break; fi

@@ -132,7 +132,7 @@ Options parse(int argc, char** argv)
                         "figures from another day).\n"
                         "--wavefront N and --samples-per-pass N (0: the default) fix what the renderer otherwise\n"
                         "chooses per device: paths in flight per pass, and samples per pixel in one pass (a CPU\n"
-                        "plans passes of half a second, in long runs up to two, and up to 16 samples:\n"
+                        "plans passes of half a second, in long runs up to two, and up to 256 samples:\n"
                         "host/render/pass_planner.h).\n");
             std::exit(0);
         } else {

@@ -111,8 +111,9 @@ PathFigures path_samples(const cl::Context& context, const Scene& scene, const F
     figures.megakernel = renderer.uses_megakernel();
     renderer.render_sample(); // warm-up: PoCL builds its work-group functions on first launch
     // A long render spends nearly all its time in passes of the planner's steady size, so
-    // that is what is timed. The planner at most doubles per pass, from 1 to 16.
-    for (int pass = 0; pass < 8 && budget_seconds > 0.0 && !renderer.passes_settled(); ++pass)
+    // that is what is timed. The planner at most doubles per pass, from 1 to
+    // PassPlanner::kMaxSamples (256: nine passes), and the first pass never settles it.
+    for (int pass = 0; pass < 12 && budget_seconds > 0.0 && !renderer.passes_settled(); ++pass)
         renderer.render_samples(static_cast<std::uint32_t>(max_samples));
     const auto begin = Clock::now();
     // Small images trace several samples per pass (Renderer::render_samples); each sample
