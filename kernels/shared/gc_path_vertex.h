@@ -297,7 +297,8 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     /* The vertex's light and BSDF numbers, drawn first although they are used last. pcg4d is
      * a chain of dependent multiplies; issued here, the two chains run alongside each other
      * and alongside the loads and the surface interpolation below, instead of each stalling
-     * the code that waits for it. Same numbers, same bits; at max depth they go unused.
+     * the code that waits for it. Same numbers, same bits; at max depth both go unused, and the
+     * light numbers where next-event estimation is skipped (a delta BSDF, no light).
      * Path samples against drawing each where it is used, interleaved rounds: 2-core VM, one
      * PoCL thread, Cornell box 1.104-1.114x, dragon 0.98-1.015x, bunny 1.018x; both cores,
      * 1.142x, 1.036x, 1.006x; H200 host, 16 cores, Cornell box 1.02-1.08x, dragon 0.92-0.99x

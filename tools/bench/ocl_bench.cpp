@@ -1,8 +1,10 @@
 #include "tools/bench/ocl_bench.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 
+#include "host/render/pass_planner.h"
 #include "host/render/renderer.h"
 #include "tools/bench/timing.h"
 
@@ -112,8 +114,10 @@ PathFigures path_samples(const cl::Context& context, const Scene& scene, const F
     renderer.render_sample(); // warm-up: PoCL builds its work-group functions on first launch
     // A long render spends nearly all its time in passes of the planner's steady size, so
     // that is what is timed. The planner at most doubles per pass, from 1 to
-    // PassPlanner::kMaxSamples (256: nine passes), and the first pass never settles it.
-    for (int pass = 0; pass < 12 && budget_seconds > 0.0 && !renderer.passes_settled(); ++pass)
+    // PassPlanner::kMaxSamples (bit_width(kMaxSamples) passes), and the first pass never
+    // settles it: a few passes of slack on top.
+    constexpr int kWarmUpPasses = std::bit_width(PassPlanner::kMaxSamples) + 3;
+    for (int pass = 0; pass < kWarmUpPasses && budget_seconds > 0.0 && !renderer.passes_settled(); ++pass)
         renderer.render_samples(static_cast<std::uint32_t>(max_samples));
     const auto begin = Clock::now();
     // Small images trace several samples per pass (Renderer::render_samples); each sample
