@@ -56,10 +56,15 @@ def parse_args(argv):
     p.add_argument("--seconds", type=float, default=1.0, help="target length of one Mitsuba render")
     p.add_argument("--same-picture", type=float, default=2.0,
                    help="largest difference of the mean luminance, percent")
+    p.add_argument("--mitsuba-lanes", choices=["native", "8"], default="native",
+                   help="llvm only: Dr.Jit's SIMD width; 8 pins it to AVX2 code where the CPU has AVX-512 "
+                        "(Dr.Jit then runs 16 paths per instruction), to tell the ISA's share of a ratio")
     p.add_argument("--json", help="also write the figures here")
     args = p.parse_args(argv)
     if args.rounds < 1 or args.threads < 0 or not args.seconds > 0:
         p.error("--rounds must be >= 1, --threads >= 0 and --seconds > 0")
+    if args.mitsuba_lanes != "native" and args.device != "cpu":
+        p.error("--mitsuba-lanes sets llvm_ad_rgb's SIMD width: --device cpu only")
     if not os.access(args.bench, os.X_OK):
         p.error(f"--bench {args.bench}: not an executable")
     args.geocold = args.geocold or os.path.join(os.path.dirname(os.path.abspath(args.bench)), "geocold-cl")
@@ -88,6 +93,35 @@ def ours(args, scene: str):
         fail(f"geocold-bench measured no path figure for scene '{scene}' on {args.device}")
     label, figures = next(iter(entry["path"].items()))
     return figures["samples_per_s"], entry["view"], label
+
+
+def llvm_target(set_avx2: bool = False):
+    """Dr.Jit's LLVM target as (cpu, lanes), or None where this Dr.Jit does not say. With
+    set_avx2, first pins the target to eight-lane AVX2 code (None if that is not possible).
+
+    Why: Dr.Jit renders one path per SIMD lane, 16 per instruction where the CPU has AVX-512
+    and 8 with AVX2, while our kernels trace one path per work-item whatever the width. The
+    ratio therefore depends on the CPU's ISA, and a figure means little without it. Dr.Jit
+    1.5 has no Python call for its target; its C++ API (jit_llvm_target_cpu,
+    jit_llvm_vector_width, jit_llvm_set_target in drjit-core's jit.h) is reached by name."""
+    import ctypes
+
+    import drjit as dr
+
+    try:
+        core = ctypes.CDLL(os.path.join(os.path.dirname(dr.__file__), "libdrjit-core.so"))
+        cpu = core._Z19jit_llvm_target_cpuv
+        lanes = core._Z21jit_llvm_vector_widthv
+        set_target = core._Z19jit_llvm_set_targetPKcS0_j
+    except (OSError, AttributeError):
+        return None
+    cpu.restype, lanes.restype = ctypes.c_char_p, ctypes.c_uint32
+    if set_avx2:
+        # The CPU's own scheduling model, without AVX-512 (LLVM drops the extensions that
+        # depend on avx512f with it).
+        set_target.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_uint32]
+        set_target(cpu(), b"+avx,+avx2,+fma,+f16c,+bmi,+bmi2,+popcnt,+sse4.2,-avx512f", 8)
+    return cpu().decode(), int(lanes())
 
 
 def mitsuba_setup(view):
@@ -233,14 +267,21 @@ def main(argv=None) -> int:
              "(DRJIT_LIBLLVM_PATH), cuda an NVIDIA driver")
     if args.threads > 0:
         dr.set_thread_count(args.threads)
+    target = None
+    if args.device == "cpu":
+        target = llvm_target(set_avx2=args.mitsuba_lanes == "8")
+        if args.mitsuba_lanes == "8" and (target is None or target[1] != 8):
+            fail("--mitsuba-lanes 8: this Dr.Jit's target cannot be set")
     threads = "every core" if args.threads == 0 else f"{args.threads} thread(s)"
-    print(f"Mitsuba {mi.__version__} {variant} against geocold-bench --device {args.device}, {threads}, "
+    isa = f" ({target[0]}, {target[1]} lanes)" if target else ""
+    print(f"Mitsuba {mi.__version__} {variant}{isa} against geocold-bench --device {args.device}, {threads}, "
           f"{args.rounds} interleaved rounds")
     results = {name: measure_scene(args, name) for name in args.scene.split(",") if name}
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"variant": variant, "mitsuba": mi.__version__, "threads": args.threads, "scenes": results}, f,
-                      indent=2)
+            json.dump({"variant": variant, "mitsuba": mi.__version__, "threads": args.threads,
+                       "llvm_target": {"cpu": target[0], "lanes": target[1]} if target else None,
+                       "scenes": results}, f, indent=2)
     return 0
 
 

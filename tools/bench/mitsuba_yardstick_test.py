@@ -42,6 +42,11 @@ class Usage(unittest.TestCase):
         self.assertEqual(run.returncode, 2)
         self.assertIn("--rounds must be >= 1", run.stderr)
 
+    def test_lanes_on_the_gpu_are_a_usage_error(self):
+        run = run_script("--bench", BENCH, "--device", "gpu", "--mitsuba-lanes", "8")
+        self.assertEqual(run.returncode, 2)
+        self.assertIn("--device cpu only", run.stderr)
+
 
 class Pfm(unittest.TestCase):
     def write(self, header: bytes, floats, order: str) -> str:

@@ -5,7 +5,8 @@
 # (GEOCOLD_PACK_MITSUBA=1) into .deps/mitsuba/site.tar.xz:
 #   1. llvm_ad_rgb against PoCL on one thread (the per-thread anchor's conditions);
 #   2. llvm_ad_rgb against PoCL on every core;
-#   3. cuda_ad_rgb against NVIDIA OpenCL on the GPU.
+#   3. cuda_ad_rgb against NVIDIA OpenCL on the GPU;
+#   and on request (GEOCOLD_YARDSTICK_STEPS) the CPU steps with Mitsuba held to AVX2.
 # Dr.Jit's LLVM back end needs a libLLVM >= 17: the first one found on the node, or
 # DRJIT_LIBLLVM_PATH. Text to $OUT/yardstick.txt, JSON to $OUT/yardstick-*.json.
 # Usage: tools/device/mitsuba-yardstick.sh [extra mitsuba_yardstick.py args, e.g. --rounds 3]
@@ -44,8 +45,17 @@ run() { # name, args...
     local s=${PIPESTATUS[0]}
     [ "$s" = 0 ] || { echo "  ($name: exit $s)" >> "$out/yardstick.txt"; [ "$status" != 0 ] || status=$s; }
 }
-run cpu-1 --device cpu --threads 1 "$@"
-run cpu-all --device cpu "$@"
-run gpu --device gpu "$@"
+# GEOCOLD_YARDSTICK_STEPS picks steps; the -avx2 ones pin Mitsuba to eight lanes
+# (--mitsuba-lanes 8), which tells how much of a CPU ratio is Dr.Jit's 16 AVX-512 lanes.
+for step in ${GEOCOLD_YARDSTICK_STEPS:-cpu-1 cpu-all gpu}; do
+    case $step in
+    cpu-1) run "$step" --device cpu --threads 1 "$@" ;;
+    cpu-all) run "$step" --device cpu "$@" ;;
+    cpu-1-avx2) run "$step" --device cpu --threads 1 --mitsuba-lanes 8 "$@" ;;
+    cpu-all-avx2) run "$step" --device cpu --mitsuba-lanes 8 "$@" ;;
+    gpu) run "$step" --device gpu "$@" ;;
+    *) echo "unknown step '$step' in GEOCOLD_YARDSTICK_STEPS" >&2; exit 2 ;;
+    esac
+done
 cat "$out/yardstick.txt"
 exit "$status"
