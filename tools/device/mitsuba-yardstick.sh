@@ -10,7 +10,7 @@
 # Dr.Jit's LLVM back end needs a libLLVM >= 17: the first one found on the node, or
 # DRJIT_LIBLLVM_PATH. Text to $OUT/yardstick.txt, JSON to $OUT/yardstick-*.json.
 # Usage: tools/device/mitsuba-yardstick.sh [extra mitsuba_yardstick.py args, e.g. --rounds 3]
-# Exit status: the first failing step's, after running all three.
+# Exit status: the first failing step's, after running every step.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
