@@ -33,6 +33,7 @@
 #include "tools/bench/bench_scenes.h"
 #include "tools/bench/embree_bench.h"
 #include "tools/bench/first_image.h"
+#include "tools/bench/host_cpu.h"
 #include "tools/bench/ocl_bench.h"
 #include "tools/bench/packet_probe.h"
 #include "tools/bench/rays.h"
@@ -657,9 +658,14 @@ int run(int argc, char** argv)
     for (DeviceSlot& d : devices) d.context = std::make_unique<cl::Context>(d.info);
     doc["embree"] = embree_available() ? embree_version() : "not built in";
     doc["threads"] = host_thread_count();
+    const HostCpu cpu = read_host_cpu();
+    doc["host_cpu"] = {{"model", cpu.model}, {"family", cpu.family}, {"model_number", cpu.model_number},
+                       {"widest_simd", cpu.widest_simd}, {"logical_cpus", cpu.logical_cpus},
+                       {"summary", cpu.summary()}};
     say("geocold-bench: %zu device(s), Embree %s, %d host threads%s\n", devices.size(),
         embree_available() ? embree_version().c_str() : "not built in (no yardstick ratios)",
         host_thread_count(), o.quick ? ", quick" : "");
+    say("  host CPU: %s\n", cpu.summary().c_str());
     for (DeviceSlot& d : devices) {
         if (d.info.is_gpu) d.bandwidth = copy_bandwidth(*d.context, std::size_t{1} << 30, o.quick ? 1 : 5);
         say("  %s: %s (%s), %u compute units, work-group %zu%s\n", d.label().c_str(), d.info.device_name.c_str(), d.info.platform_name.c_str(), d.info.compute_units,

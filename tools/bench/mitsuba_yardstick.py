@@ -81,7 +81,7 @@ def thread_args(threads: int) -> list:
 
 
 def ours(args, scene: str):
-    """geocold-bench's path figure and view for one scene: (samples/s, view, device label)."""
+    """geocold-bench's path figure and view for one scene: (samples/s, view, device label, host CPU)."""
     command = [args.bench, "--json", "--device", args.device, "--scene", scene, "--no-rays", "--no-first-image",
                "--no-packet-probe", *thread_args(args.threads)]
     run = subprocess.run(command, capture_output=True, text=True)
@@ -92,7 +92,7 @@ def ours(args, scene: str):
     if not entry or not entry.get("path"):
         fail(f"geocold-bench measured no path figure for scene '{scene}' on {args.device}")
     label, figures = next(iter(entry["path"].items()))
-    return figures["samples_per_s"], entry["view"], label
+    return figures["samples_per_s"], entry["view"], label, doc.get("host_cpu", {}).get("summary", "not recorded")
 
 
 def llvm_target(set_avx2: bool = False):
@@ -205,7 +205,7 @@ def geocold_picture(args, view, spp: int):
 
 
 def measure_scene(args, scene_name: str) -> dict:
-    ours_sps, view, label = ours(args, scene_name)
+    ours_sps, view, label, host_cpu = ours(args, scene_name)
     scene, integrator = mitsuba_setup(view)
     pixels = view["width"] * view["height"]
     # The sample count for one render of about --seconds: grown 8x at a time until a render
@@ -231,20 +231,21 @@ def measure_scene(args, scene_name: str) -> dict:
     print(f"== {scene_name}: {view['width']}x{view['height']}, depth {view['max_depth']}, no Russian roulette; "
           f"mean luminance ours {ours_mean:.5f}, Mitsuba {theirs_mean:.5f} ({diff:.2f} % apart, bound "
           f"{args.same_picture} %)")
+    print(f"  host CPU: {host_cpu}")
     if not diff <= args.same_picture:
         fail(f"{scene_name}: the two renderers do not draw the same picture; no ratio", 1)
 
     rounds = []
     for r in range(args.rounds):
         if r > 0:
-            ours_sps, _, _ = ours(args, scene_name)
+            ours_sps, _, _, _ = ours(args, scene_name)
         seconds, _ = mitsuba_render(scene, integrator, spp, 3 + r)
         theirs_sps = pixels * spp / seconds
         rounds.append({"ours": ours_sps, "mitsuba": theirs_sps, "ratio": ours_sps / theirs_sps})
         print(f"  round {r + 1}: ours {ours_sps / 1e6:.4f} M, Mitsuba {theirs_sps / 1e6:.4f} M "
               f"({spp} spp in {seconds:.3f} s) = {ours_sps / theirs_sps:.3f}x")
     ratios = [x["ratio"] for x in rounds]
-    summary = {"device": label, "ours_median": statistics.median(x["ours"] for x in rounds),
+    summary = {"device": label, "host_cpu": host_cpu, "ours_median": statistics.median(x["ours"] for x in rounds),
                "mitsuba_median": statistics.median(x["mitsuba"] for x in rounds), "ratio_median": statistics.median(ratios),
                "ratio_min": min(ratios), "ratio_max": max(ratios), "mitsuba_spp": spp, "rounds": rounds,
                "mean_luminance": {"ours": ours_mean, "mitsuba": theirs_mean}}

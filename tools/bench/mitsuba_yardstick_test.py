@@ -79,8 +79,10 @@ class OwnTools(unittest.TestCase):
 
     def test_bench_json_gives_a_view_and_a_figure_and_geocold_cl_draws_it(self):
         args = self.args()
-        samples_per_s, view, label = yardstick.ours(args, "tiny")
-        print(f"[ yardstick ] geocold-bench tiny on {label}: {samples_per_s / 1e6:.3f} M samples/s, view {view}")
+        samples_per_s, view, label, host_cpu = yardstick.ours(args, "tiny")
+        print(f"[ yardstick ] geocold-bench tiny on {label} ({host_cpu}): {samples_per_s / 1e6:.3f} M samples/s, "
+              f"view {view}")
+        self.assertNotEqual(host_cpu, "not recorded")
         self.assertGreater(samples_per_s, 0.0)
         self.assertTrue(view["source"].endswith("CornellBox-Original.obj"))
         self.assertEqual((view["width"], view["height"], view["max_depth"]), (64, 64, 8))
