@@ -27,7 +27,7 @@ step() {
 step "configure (asan preset)"
 build_args=()
 if [ -n "${GEOCOLD_ASAN_BUILD_DIR:-}" ]; then build_args=(-B "$GEOCOLD_ASAN_BUILD_DIR"); fi
-# No -Werror here: GCC 12 at -O2 with ASan warns falsely (-Wmaybe-uninitialized inside
+# No -Werror here: GCC 12 with ASan warns falsely (-Wmaybe-uninitialized inside
 # <regex> and <functional>); the ci preset is the warnings gate.
 cmake --preset asan "${build_args[@]}" > /dev/null
 build=${GEOCOLD_ASAN_BUILD_DIR:-$root/build/asan}
