@@ -39,25 +39,17 @@
 #include "gc_camera.h"
 #include "gc_rng.h"
 
-/* One work-item's pixels, out of line on CPUs. PoCL compiles a kernel into three functions,
- * the kernel itself and two work-group launchers, and inlined the whole body into each: three
- * copies of this loop with its shading and packet code went through the optimiser and the
- * code generator on every cold start. Called, the body is compiled once and the launchers
- * shrink to a loop of calls (PoCL's object: 62 KB -> 30 KB). Cold first image, 4 interleaved
- * rounds, medians of per-round ratios: 2-core VM (PoCL 3.1) Cornell box 0.75x, dragon 0.82x
- * (about 1 s less); H200 host's 16 cores (PoCL 5) 0.92x and 0.78x. Path samples 0.99-1.00x
- * (Cornell box) and 1.00-1.10x (dragon) on both: one call per work-item is nothing against
- * its paths. On GPUs (the BVH2, no GC_BVH_WIDE) it stays inline: a call there costs registers. */
-#if defined(GC_BVH_WIDE)
-#define GC_MEGAKERNEL_ITEM static __attribute__((noinline)) void
-#else
-#define GC_MEGAKERNEL_ITEM static void
-#endif
-GC_MEGAKERNEL_ITEM gc_megakernel_item(const uint item,
-                                      const GcRenderParams params,
-                                      GC_SCENE_PARAMS,
-                                      __global float4* film,
-                                      __global float4* film_squares)
+/* One work-item's pixels, out of line on CPUs (GC_ITEM_BODY, gc_platform.h). Inlined, PoCL
+ * compiled three copies of this loop with its shading and packet code; called, once, and its
+ * object shrank from 62 KB to 30 KB. Cold first image, 4 interleaved rounds, medians of
+ * per-round ratios: 2-core VM (PoCL 3.1) Cornell box 0.75x, dragon 0.82x (about 1 s less);
+ * H200 host's 16 cores (PoCL 5) 0.92x and 0.78x. Path samples 0.99-1.00x (Cornell box) and
+ * 1.00-1.10x (dragon) on both: one call per work-item is nothing against its paths. */
+GC_ITEM_BODY gc_megakernel_item(const uint item,
+                                const GcRenderParams params,
+                                GC_SCENE_PARAMS,
+                                __global float4* film,
+                                __global float4* film_squares)
 {
     /* This work-item's pixels: pixels_per_item neighbours in the batch (gc_packet_lanes.h). */
     const uint per_item = max(params.pixels_per_item, 1u);

@@ -94,13 +94,15 @@ static void gc_whitted_push(GcRay* stack_ray, float3* stack_weight, uint* stack_
     stack_depth[slot] = depth;
 }
 
-__kernel void whitted_render(const GcRenderParams params,
+/* One pixel's sample, out of line on CPUs (GC_ITEM_BODY, gc_platform.h): PoCL compiled three
+ * 10 KB copies of it inlined. */
+GC_ITEM_BODY gc_whitted_item(const uint i,
+                             const GcRenderParams params,
                              GC_BVH_PARAMS,
                              GC_EMITTERS_PARAM,
                              __global const GcPointLight* point_lights,
                              __global float4* film)
 {
-    const uint i = get_global_id(0);
     if (i >= params.pixel_count) return;
     const uint pixel = params.pixel_offset + i;
     const uint px = pixel % params.width;
@@ -194,4 +196,13 @@ __kernel void whitted_render(const GcRenderParams params,
                         weight * spec.reflect_weight, depth + 1u);
     }
     film[pixel] += (float4)(L, 1.0f);
+}
+
+__kernel void whitted_render(const GcRenderParams params,
+                             GC_BVH_PARAMS,
+                             GC_EMITTERS_PARAM,
+                             __global const GcPointLight* point_lights,
+                             __global float4* film)
+{
+    gc_whitted_item(get_global_id(0), params, GC_BVH_ARGS, GC_EMITTERS_ARG, point_lights, film);
 }

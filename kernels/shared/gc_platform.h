@@ -24,6 +24,16 @@
  * by default in OpenCL C, and a device that fuses rounds differently from one that does not. */
 #pragma OPENCL FP_CONTRACT OFF
 #define GC_FUNC static inline
+/* A kernel's per-work-item body (megakernel.cl, whitted.cl), out of line on CPUs: PoCL inlines
+ * a kernel's body into the kernel and into each of its two work-group launchers, so a large
+ * body went through the optimiser and the code generator three times on every cold start
+ * (megakernel.cl has the figures). The CPU layouts (GC_BVH_WIDE, a build option) mark a CPU;
+ * a GPU keeps the body inline, as a call there costs registers. */
+#if defined(GC_BVH_WIDE)
+#define GC_ITEM_BODY static __attribute__((noinline)) void
+#else
+#define GC_ITEM_BODY static void
+#endif
 #define GC_GLOBAL __global
 #define GC_CONSTANT __constant
 #define GC_STRUCT(name) typedef struct name
