@@ -1,5 +1,5 @@
 // The CPU a bench run measured on, as the kernel's /proc/cpuinfo describes it. The CPU path
-// figures against Mitsuba turn on it (a Zen 3 without AVX-512 and a Sapphire Rapids with it
+// figures against Mitsuba turn on it (a Zen 3 without AVX-512 and an AVX-512 Xeon
 // gave 1.61x and 0.61x for the same build), so every run records it beside its figures.
 #pragma once
 
