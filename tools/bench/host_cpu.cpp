@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <set>
 #include <sstream>
 
 namespace gc::bench {
@@ -24,13 +26,10 @@ int parsed_int(const std::string& s)
 // The widest of the ISAs the bench's figures depend on, from a flags line's words.
 std::string widest_simd(const std::string& flags)
 {
-    std::istringstream words(flags);
-    bool has[6] = {};
-    static const char* const order[6] = {"avx512f", "avx2", "avx", "sse4_2", "sve", "asimd"};
-    for (std::string w; words >> w;)
-        for (int i = 0; i < 6; ++i) has[i] = has[i] || w == order[i];
-    for (int i = 0; i < 6; ++i)
-        if (has[i]) return order[i];
+    std::istringstream in(flags);
+    const std::set<std::string> words{std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
+    for (const char* isa : {"avx512f", "avx2", "avx", "sse4_2", "sve", "asimd"})
+        if (words.count(isa)) return isa;
     return {};
 }
 
