@@ -102,10 +102,10 @@ def llvm_target(set_avx2: bool = False):
     Why: Dr.Jit renders one path per SIMD lane, 16 per instruction where the CPU has AVX-512
     and 8 with AVX2, while our kernels trace one path per work-item whatever the width, so
     a CPU ratio comes with the ISA it was measured on. (Held to 8 lanes on the H200 host's
-    Sapphire Rapids, Mitsuba rendered the Cornell box 0.90x as fast: the width is a part of
-    its per-CPU speed, not most of it.) Dr.Jit
-    1.5 has no Python call for its target; its C++ API (jit_llvm_target_cpu,
-    jit_llvm_vector_width, jit_llvm_set_target in drjit-core's jit.h) is reached by name."""
+    AVX-512 Xeon, Mitsuba rendered the Cornell box 0.90x as fast: the width is a part of its
+    per-CPU speed, not most of it.) Dr.Jit 1.5 has no Python call for its target; its C++ API
+    (jit_llvm_target_cpu, jit_llvm_vector_width, jit_llvm_set_target in drjit-core's jit.h) is
+    reached by name."""
     import ctypes
 
     import drjit as dr
