@@ -517,32 +517,37 @@ __kernel void path_megakernel(const GcRenderParams params,
                               __global float4* film,
                               __global float4* film_squares)
 {
-    const uint slot = get_global_id(0);
-    if (slot >= params.pixel_count) return;
-    const uint px = params.pixel_offset + slot;
-    float4 sum = film[px];
-    float4 squares = film_squares[px];
-    for (uint s0 = 0u; s0 < params.samples_in_pass; s0 += LANES) {
-        const uint lanes = min(LANES, params.samples_in_pass - s0);
-        PkPaths ps = pk_no_paths();
-        for (uint k = 0u; k < lanes; ++k) pk_start(&ps, k, &params, px, params.sample_index + s0 + k);
-        V3 done = v3(0.0f, 0.0f, 0.0f);
-        bool camera_rays = true;
-        while (any(ps.alive)) {
-            const vi was = ps.alive;
-            const vi survive = pk_segment(&params, GC_SCENE_ARGS, &ps, camera_rays ? PK_PACKET_PRIMARY : PK_PACKET_CLOSEST);
-            camera_rays = false;
-            done = v3_sel(was & ~survive, ps.L, done);
-            ps.alive = survive;
+    /* The host sizes the launch for the scalar megakernel's pixels_per_item neighbours per
+     * work-item (gc_packet_lanes.h); this layout renders them one after the other. */
+    const uint per_item = max(params.pixels_per_item, 1u);
+    const uint first = get_global_id(0) * per_item;
+    const uint last = min(first + per_item, params.pixel_count);
+    for (uint slot = first; slot < last; ++slot) {
+        const uint px = params.pixel_offset + slot;
+        float4 sum = film[px];
+        float4 squares = film_squares[px];
+        for (uint s0 = 0u; s0 < params.samples_in_pass; s0 += LANES) {
+            const uint lanes = min(LANES, params.samples_in_pass - s0);
+            PkPaths ps = pk_no_paths();
+            for (uint k = 0u; k < lanes; ++k) pk_start(&ps, k, &params, px, params.sample_index + s0 + k);
+            V3 done = v3(0.0f, 0.0f, 0.0f);
+            bool camera_rays = true;
+            while (any(ps.alive)) {
+                const vi was = ps.alive;
+                const vi survive = pk_segment(&params, GC_SCENE_ARGS, &ps, camera_rays ? PK_PACKET_PRIMARY : PK_PACKET_CLOSEST);
+                camera_rays = false;
+                done = v3_sel(was & ~survive, ps.L, done);
+                ps.alive = survive;
+            }
+            for (uint k = 0u; k < lanes; ++k) {
+                const float3 value = gc_film_value(make_float3(done.x[k], done.y[k], done.z[k]));
+                sum += (float4)(value, 1.0f);
+                squares += (float4)(value * value, 0.0f);
+            }
         }
-        for (uint k = 0u; k < lanes; ++k) {
-            const float3 value = gc_film_value(make_float3(done.x[k], done.y[k], done.z[k]));
-            sum += (float4)(value, 1.0f);
-            squares += (float4)(value * value, 0.0f);
-        }
+        film[px] = sum;
+        film_squares[px] = squares;
     }
-    film[px] = sum;
-    film_squares[px] = squares;
 }
 #else
 /* Pixels per active work-item: its lanes take them one after the other, a new path
@@ -555,9 +560,13 @@ __kernel void path_megakernel(const GcRenderParams params,
                               __global float4* film,
                               __global float4* film_squares)
 {
-    const uint slot0 = get_global_id(0);
-    if ((slot0 % GROUP) != 0u || slot0 >= params.pixel_count) return;
-    const uint group_end = min(slot0 + GROUP, params.pixel_count);
+    /* The group of GROUP work-items, each sized by the host for pixels_per_item neighbours
+     * (gc_packet_lanes.h), is rendered by its first work-item. */
+    const uint per_item = max(params.pixels_per_item, 1u);
+    if ((get_global_id(0) % GROUP) != 0u) return;
+    const uint slot0 = get_global_id(0) * per_item;
+    if (slot0 >= params.pixel_count) return;
+    const uint group_end = min(slot0 + GROUP * per_item, params.pixel_count);
     for (uint s = 0u; s < params.samples_in_pass; ++s) {
         const uint sample = params.sample_index + s;
         uint next = slot0;
