@@ -41,10 +41,15 @@ constexpr std::uint32_t kParallelBinPrims = 32768;  // larger nodes bin in paral
 constexpr std::uint32_t kMinBinChunkPrims = 8192;   // ...of at least this many triangles
 constexpr std::uint32_t kSplitBinPrims = 128;       // from here on, bin into two sets (add_split)
 constexpr std::uint32_t kPrimChunk = 16384;         // chunk of the triangle-bounds pass
-// From this size on, a node is partitioned stably (partition_stable), in parallel chunks.
-// Which scheme a node gets depends on its size alone, never on the thread count, so the tree
-// (its leaf order included) stays a pure function of the scene and the options.
-constexpr std::uint32_t kStablePartitionPrims = std::uint32_t{1} << 20;
+// A node binned in at least kMinStableChunks parallel chunks is also partitioned in them
+// (partition_stable); the rest in place on one thread (partition). Which one runs depends on
+// the thread count, but what they decide does not: both send the same triangles to each
+// side, only in another order, and nothing the builder keeps depends on that order (the bins
+// are minima, maxima and counts; each leaf's triangles are sorted by index in make_leaf; the
+// median split orders by centroid, then index). So the tree stays a pure function of the
+// scene and the options. Two chunks do not pay for the out-of-place pass (2-core VM, tree
+// speed 0.93-0.96x with them on the bunny and the dragon).
+constexpr std::uint32_t kMinStableChunks = 4;
 // Node slots a thread takes from the shared array at a time; even, since nodes come in
 // sibling pairs, so a block is used up exactly before the next one is taken.
 constexpr std::uint32_t kNodeBlock = 256;
@@ -205,9 +210,9 @@ struct Split {
     float cost = kInf; // sum over both sides of area * count (not yet normalised)
     Box4 left_box;     // bounds of the triangles on each side, the union of their bins
     Box4 right_box;
-    // For a node partitioned stably: how many of each binning chunk's triangles go left, in
-    // chunk order (chunk_begin() cuts the node); partition_stable places each chunk's runs
-    // by these counts before it reads a triangle.
+    // For a node binned in chunks (and so partitioned stably): how many of each chunk's
+    // triangles go left, in chunk order (chunk_begin() cuts the node); partition_stable places
+    // each chunk's runs by these counts before it reads a triangle.
     std::vector<std::uint32_t> chunk_lefts;
 };
 
@@ -253,7 +258,7 @@ public:
     {
         // partition_stable's other array: node ranges are disjoint, so one array serves every
         // node being partitioned at the same time.
-        if (refs.size() >= kStablePartitionPrims) m_scratch.resize(refs.size());
+        if (pool.threads() >= static_cast<int>(kMinStableChunks) && refs.size() >= kParallelBinPrims) m_scratch.resize(refs.size());
         // Written leaf by leaf (make_leaf), every entry once.
         m_tree.prim_indices.resize(refs.size());
         m_min_task_prims = std::clamp<std::uint32_t>(
@@ -329,8 +334,8 @@ private:
         NodeJob left{pair, job.begin, 0, job.depth + 1, {}, {}, job.refs};
         NodeJob right{pair + 1, 0, job.end, job.depth + 1, {}, {}, job.refs};
         if (split.axis >= 0) {
-            left.end = n >= kStablePartitionPrims ? partition_stable(split, job, left, right)
-                                                  : partition(split, job, left, right);
+            left.end = split.chunk_lefts.empty() ? partition(split, job, left, right)
+                                                 : partition_stable(split, job, left, right);
         } else {
             left.end = median_split(job, left, right);
         }
@@ -348,13 +353,20 @@ private:
         }
     }
 
-    // Also writes the leaf's entries of prim_indices, while its references are in cache.
+    // Also writes the leaf's entries of prim_indices, while its references are in cache, in
+    // ascending order: the partitions leave a leaf's triangles in an order that depends on
+    // which scheme ran (see partition_stable), and a leaf holds a few (insertion sort).
     void make_leaf(BvhBuildNode& node, const NodeJob& job)
     {
         node.first = job.begin;
         node.count = job.end - job.begin;
         std::uint32_t* out = m_tree.prim_indices.data();
-        for (std::uint32_t i = job.begin; i < job.end; ++i) out[i] = prim_of(job.refs[i]);
+        for (std::uint32_t i = job.begin; i < job.end; ++i) {
+            const std::uint32_t prim = prim_of(job.refs[i]);
+            std::uint32_t j = i;
+            for (; j > job.begin && out[j - 1] > prim; --j) out[j] = out[j - 1];
+            out[j] = prim;
+        }
     }
 
     // Wald 2007: bin centroids on all three axes in one pass, then sweep the bins from both
@@ -446,14 +458,10 @@ private:
         if (best.axis >= 0) {
             for (int i = 0; i < bins; ++i)
                 (i < best.bin ? best.left_box : best.right_box).grow(bin.lo[best.axis][i], bin.hi[best.axis][i]);
-            if (n >= kStablePartitionPrims) {
-                if (chunked.chunks == 0) {
-                    best.chunk_lefts.assign(1, left_count[best.bin - 1][best.axis]);
-                } else {
-                    best.chunk_lefts.assign(chunked.chunks, 0);
-                    for (std::uint32_t c = 0; c < chunked.chunks; ++c)
-                        for (int i = 0; i < best.bin; ++i) best.chunk_lefts[c] += chunked.sets[c].count[best.axis][i];
-                }
+            if (chunked.chunks >= kMinStableChunks) {
+                best.chunk_lefts.assign(chunked.chunks, 0);
+                for (std::uint32_t c = 0; c < chunked.chunks; ++c)
+                    for (int i = 0; i < best.bin; ++i) best.chunk_lefts[c] += chunked.sets[c].count[best.axis][i];
             }
         }
         best.map = map;
@@ -544,7 +552,8 @@ private:
     // triangle is read; each chunk then writes both runs forward, gathering the centroid
     // bounds of both sides. Against the copy back, same runs: rtcBuildBVH speed 0.97x -> 1.02x
     // (medians of 5 interleaved rounds, per-round gain 0.99-1.10x). On one thread the
-    // out-of-place pass still costs more than Lomuto's, hence the 2^20 threshold.
+    // out-of-place pass costs more than Lomuto's, so only nodes binned in chunks (on several
+    // threads) come here.
     std::uint32_t partition_stable(const Split& s, const NodeJob& job, NodeJob& left, NodeJob& right)
     {
         const std::uint32_t n = job.end - job.begin;
@@ -599,9 +608,7 @@ private:
     }
 
     // Fallback when binning finds no split (all centroids in one bin, or the depth guard):
-    // halve by count along the widest centroid axis. std::stable_sort has one possible result
-    // for a strict weak order, so this is deterministic too. With all centroids equal the
-    // current order is split in half as it is.
+    // halve by count along the widest centroid axis.
     std::uint32_t median_split(const NodeJob& job, NodeJob& left, NodeJob& right)
     {
         alignas(16) float cmin[4];
@@ -617,12 +624,19 @@ private:
                 axis = a;
             }
         }
+        // By centroid, then by triangle index: a total order, so the halves do not depend on
+        // the order the partitions left the triangles in. Coincident centroids (no axis) are
+        // ordered by index alone; their halves stay sorted, hence the check before sorting.
         PrimRef* refs = job.refs;
-        if (axis >= 0) {
-            std::stable_sort(refs + job.begin, refs + job.end, [axis](const PrimRef& x, const PrimRef& y) {
-                return 0.5f * x.lo[axis] + 0.5f * x.hi[axis] < 0.5f * y.lo[axis] + 0.5f * y.hi[axis];
-            });
-        }
+        const auto before = [axis](const PrimRef& x, const PrimRef& y) {
+            if (axis >= 0) {
+                const float cx = 0.5f * x.lo[axis] + 0.5f * x.hi[axis];
+                const float cy = 0.5f * y.lo[axis] + 0.5f * y.hi[axis];
+                if (cx != cy) return cx < cy;
+            }
+            return prim_of(x) < prim_of(y);
+        };
+        if (!std::is_sorted(refs + job.begin, refs + job.end, before)) std::sort(refs + job.begin, refs + job.end, before);
         const std::uint32_t mid = job.begin + (job.end - job.begin) / 2;
         for (std::uint32_t i = job.begin; i < job.end; ++i) {
             Vec4 lo;

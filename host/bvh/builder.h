@@ -4,8 +4,9 @@
 // split wins, unless a leaf is cheaper.
 //
 // Output is a BvhTree, the intermediate form flatten() turns into the device layout. The
-// tree is a pure function of the scene and the options: the thread count changes only which
-// thread builds which subtree, never a decision, so every machine builds the same BVH.
+// tree is a pure function of the scene and the options: the thread count changes which
+// thread builds which subtree and how a node's triangles are reordered on the way, never a
+// decision or a leaf's order, so every machine builds the same BVH.
 #pragma once
 
 #include <cstdint>

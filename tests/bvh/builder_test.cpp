@@ -26,8 +26,8 @@ bool same_bytes(const FlatBvh& a, const FlatBvh& b)
 
 TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
 {
-    // Large enough that the builder really runs tasks in parallel (subtrees >= 4096 triangles,
-    // nodes >= 65536 triangles binned in chunks).
+    // Large enough that the builder really runs tasks in parallel (subtrees >= 512 triangles,
+    // nodes >= 32768 triangles binned and, on four threads, partitioned in chunks).
     Scene scene = random_soup(150000, 21, 0.02f);
     // Plus a dense clump, so SAH splits are uneven.
     const Scene clump = random_soup(30000, 22, 0.002f);
@@ -44,27 +44,28 @@ TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
     check_invariants(four, scene, 4);
 }
 
-// Nodes of 2^20 triangles and more are partitioned stably in parallel chunks (one chunk on
-// one thread, three on three), each from the array it lies in into the other one: the same
-// tree either way. 2^21 + 200000 triangles, so that the root's children (about 1.15M each)
-// are partitioned stably too, back out of the scratch array, and their children are built
-// in the reference array again.
+// On four or more threads, nodes binned in chunks are partitioned stably in those chunks, each
+// from the array it lies in into the other one; on one thread every node is partitioned in
+// place, which leaves the triangles in another order: the same tree either way. 2^21 +
+// 200000 triangles, so that several levels go out of the reference array, back out of the
+// scratch array, and their children are built in the reference array again.
 TEST(BvhBuilder, ThreadCountDoesNotChangeALargeBvh)
 {
     const Scene scene = random_soup((std::size_t{1} << 21) + 200000, 29, 0.005f);
     const FlatBvh one = build_bvh(scene, {.threads = 1});
-    const FlatBvh three = build_bvh(scene, {.threads = 3});
-    std::printf("[ determinism ] %zu triangles, %zu nodes; 1 thread %.3f s, 3 threads %.3f s\n",
-                scene.triangle_count(), one.nodes.size(), one.build_seconds, three.build_seconds);
-    ASSERT_TRUE(same_bytes(one, three));
-    check_invariants(three, scene, 4);
+    const FlatBvh four = build_bvh(scene, {.threads = 4});
+    std::printf("[ determinism ] %zu triangles, %zu nodes; 1 thread %.3f s, 4 threads %.3f s\n",
+                scene.triangle_count(), one.nodes.size(), one.build_seconds, four.build_seconds);
+    ASSERT_TRUE(same_bytes(one, four));
+    check_invariants(four, scene, 4);
 }
 
 // A large node whose chunks split very differently: a spread of triangles, then a clump of
 // coincident ones (which no split separates: they end in median splits) appended after it,
-// so that with three threads the stable partition's first chunk sends everything one way,
-// the last everything the other way and the middle one a mix. Same tree on one thread and
-// on three, every triangle in exactly one leaf.
+// so that with four threads the stable partition's first chunks send everything one way,
+// the last everything the other way and one in between a mix. Their median splits must not
+// halve them by the order the partitions left them in. Same tree on one thread and on four,
+// every triangle in exactly one leaf.
 TEST(BvhBuilder, LopsidedLargeNodesPartitionAlike)
 {
     Scene scene = random_soup(600000, 33, 0.005f);
@@ -73,12 +74,12 @@ TEST(BvhBuilder, LopsidedLargeNodesPartitionAlike)
         add_triangle(scene, Point3(2.0f, 2.0f, 2.0f), Point3(2.001f, 2.0f, 2.0f), Point3(2.0f, 2.001f, 2.0f));
     ASSERT_GE(scene.triangle_count(), std::size_t{1} << 20);
     const FlatBvh one = build_bvh(scene, {.threads = 1});
-    const FlatBvh three = build_bvh(scene, {.threads = 3});
+    const FlatBvh four = build_bvh(scene, {.threads = 4});
     const BvhStats stats = bvh_stats(one);
     std::printf("[ lopsided ] %zu triangles (%zu coincident), %zu nodes, depth %zu\n", scene.triangle_count(),
                 scene.triangle_count() - spread, one.nodes.size(), stats.max_depth);
-    ASSERT_TRUE(same_bytes(one, three));
-    check_invariants(three, scene, 4);
+    ASSERT_TRUE(same_bytes(one, four));
+    check_invariants(four, scene, 4);
 }
 
 // flatten() lays out a large tree's nodes on a pool (subtrees below a cut depth sized, then
