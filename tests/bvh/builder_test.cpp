@@ -27,7 +27,7 @@ bool same_bytes(const FlatBvh& a, const FlatBvh& b)
 TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
 {
     // Large enough that the builder really runs tasks in parallel (subtrees >= 512 triangles,
-    // nodes >= 32768 triangles binned and, on four threads, partitioned in chunks).
+    // nodes >= 32768 triangles, or on 16 threads >= 16384, binned and partitioned in chunks).
     Scene scene = random_soup(150000, 21, 0.02f);
     // Plus a dense clump, so SAH splits are uneven.
     const Scene clump = random_soup(30000, 22, 0.002f);
@@ -36,10 +36,12 @@ TEST(BvhBuilder, ThreadCountDoesNotChangeTheBvh)
                      Point3(0.01f * clump.vertex(t, 2).glm()));
     const FlatBvh one = build_bvh(scene, {.threads = 1});
     const FlatBvh four = build_bvh(scene, {.threads = 4});
+    const FlatBvh sixteen = build_bvh(scene, {.threads = 16}); // nodes from 16384 in chunks
     const FlatBvh all = build_bvh(scene, {.threads = 0});
     std::printf("[ determinism ] %zu triangles, %zu nodes; 1 thread %.3f s, 4 threads %.3f s\n",
                 scene.triangle_count(), one.nodes.size(), one.build_seconds, four.build_seconds);
     EXPECT_TRUE(same_bytes(one, four)) << "1 vs 4 threads";
+    EXPECT_TRUE(same_bytes(one, sixteen)) << "1 vs 16 threads";
     EXPECT_TRUE(same_bytes(one, all)) << "1 thread vs hardware_concurrency";
     check_invariants(four, scene, 4);
 }
