@@ -217,9 +217,9 @@ struct Split {
     float cost = kInf; // sum over both sides of area * count (not yet normalised)
     Box4 left_box;     // bounds of the triangles on each side, the union of their bins
     Box4 right_box;
-    // For a node binned in chunks (and so partitioned stably): how many of each chunk's
-    // triangles go left, in chunk order (chunk_begin() cuts the node); partition_stable places
-    // each chunk's runs by these counts before it reads a triangle.
+    // For a node binned in kMinStableChunks or more chunks (and so partitioned stably): how
+    // many of each chunk's triangles go left, in chunk order (chunk_begin() cuts the node);
+    // partition_stable places each chunk's runs by these counts before it reads a triangle.
     std::vector<std::uint32_t> chunk_lefts;
 };
 
@@ -564,8 +564,8 @@ private:
     // triangle is read; each chunk then writes both runs forward, gathering the centroid
     // bounds of both sides. Against the copy back, same runs: rtcBuildBVH speed 0.97x -> 1.02x
     // (medians of 5 interleaved rounds, per-round gain 0.99-1.10x). On one thread the
-    // out-of-place pass costs more than Lomuto's, so only nodes binned in chunks (on several
-    // threads) come here.
+    // out-of-place pass costs more than Lomuto's, so only nodes binned in kMinStableChunks or
+    // more chunks (on as many threads) come here.
     std::uint32_t partition_stable(const Split& s, const NodeJob& job, NodeJob& left, NodeJob& right)
     {
         const std::uint32_t n = job.end - job.begin;
