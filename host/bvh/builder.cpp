@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -766,6 +767,8 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
 
     // Triangle bounds in chunks; the chunks' results are joined in order, so the error names
     // the first bad triangle whatever the thread count.
+    using Clock = std::chrono::steady_clock;
+    const auto bounds_start = Clock::now();
     BigArray<PrimRef> refs(count);
     const std::size_t chunks = (count + kPrimChunk - 1) / kPrimChunk;
     std::vector<PrimChunk> parts(chunks);
@@ -781,6 +784,7 @@ BvhTree build_bvh_tree(const Scene& scene, const BvhBuildOptions& options)
         box.grow(p.box);
         cbox.grow(p.cbox);
     }
+    tree.bounds_seconds = std::chrono::duration<double>(Clock::now() - bounds_start).count();
 
     Builder builder(refs, tree, options, pool);
     builder.build_root(box, cbox);

@@ -49,6 +49,7 @@ struct BvhBuildNode {
 struct BvhTree {
     BigArray<BvhBuildNode> nodes; // root at 0; empty for an empty scene
     BigArray<std::uint32_t> prim_indices;    // scene triangle indices in leaf order
+    double bounds_seconds = 0.0; // wall time of the triangle-bounds pass that starts the build
 };
 
 // Throws UsageError for options out of range and InputError for a scene with non-finite

@@ -29,6 +29,7 @@ FlatBvh build_bvh(const Scene& scene, const BvhBuildOptions& options)
     const auto tree_done = Clock::now();
     FlatBvh flat = flatten(tree, scene);
     flat.tree_seconds = std::chrono::duration<double>(tree_done - start).count();
+    flat.bounds_seconds = tree.bounds_seconds;
     flat.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return flat;
 }

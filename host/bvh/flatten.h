@@ -25,6 +25,7 @@ struct FlatBvh {
     BigArray<dev::GcTriangle> triangles;
     double build_seconds = 0.0; // wall time of build_bvh (tree + flatten); 0 if not timed
     double tree_seconds = 0.0;  // of which the tree (build_bvh_tree); the rest is flatten
+    double bounds_seconds = 0.0; // of which the tree's triangle-bounds pass (BvhTree::bounds_seconds)
 
     // Triangles of the scene (0 for the empty scene's dummy).
     std::size_t scene_triangle_count() const;

@@ -163,6 +163,7 @@ EmbreeBuildFigures embree_build_bvh2(const Scene& scene, const BvhBuildOptions& 
         chunk_bounds[begin / kChunk] = b;
     });
     for (const RTCBounds& b : chunk_bounds) grow(root, b);
+    figures.prims_seconds = seconds_since(start);
     RTCBVH bvh = rtcNewBVH(device);
     RTCBuildArguments args = rtcDefaultBuildArguments();
     args.byteSize = sizeof(args);

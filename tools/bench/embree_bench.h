@@ -22,6 +22,7 @@ std::string embree_version(); // "" when not available
 // of bvh_stats. Also the time of Embree's own scene commit (its BVH4/8 for tracing).
 struct EmbreeBuildFigures {
     double bvh2_seconds = 0.0;
+    double prims_seconds = 0.0; // of which the primitive array (the triangles' bounds)
     float bvh2_sah = 0.0f;
     std::size_t bvh2_nodes = 0;
 };
