@@ -355,10 +355,10 @@ private:
 
         if (m_pool.threads() > 1 && left.end - left.begin >= m_min_task_prims &&
             right.end - right.begin >= m_min_task_prims) {
-            // The right child as a task, the left one here. for_each waits for the task
+            // The right child as a task, the left one here. fork_join waits for the task
             // before an exception from either side leaves this frame: the task uses the
             // builder, which that exception would otherwise destroy under it.
-            m_pool.for_each(2, [&](std::size_t side) { build(side == 0 ? left : right); });
+            m_pool.fork_join([&] { build(left); }, [&] { build(right); });
         } else {
             build(left);
             build(right);

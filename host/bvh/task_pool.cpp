@@ -185,8 +185,11 @@ void TaskPool::run_task(Task& task, std::unique_lock<std::mutex>& lock)
     task.run = nullptr; // release captures outside the lock
     lock.lock();
     if (error && !task.group->error) task.group->error = error;
-    // Only threads in wait() care that a group finished; idle workers sleep on.
-    if (--task.group->pending == 0 && m_waiting > 0) m_progress.notify_all();
+    // Only waiting threads care that a group finished; idle workers sleep on.
+    if (--task.group->pending == 0) {
+        if (m_waiting > 0) m_progress.notify_all();
+        if (m_waiting_own > 0) m_group_done.notify_all();
+    }
 }
 
 void TaskPool::wait(TaskGroup& group)
@@ -205,6 +208,36 @@ void TaskPool::wait(TaskGroup& group)
             --m_waiting;
         }
     }
+    rethrow_failure(group);
+}
+
+void TaskPool::wait_own(TaskGroup& group)
+{
+    std::unique_lock<std::mutex> lock(m_mutex);
+    while (group.pending > 0) {
+        // The group's newest queued task; the queue is short (tasks are taken as they come).
+        auto own = m_queue.end();
+        for (auto it = m_queue.end(); it != m_queue.begin();) {
+            if ((--it)->group == &group) {
+                own = it;
+                break;
+            }
+        }
+        if (own != m_queue.end()) {
+            Task task = std::move(*own);
+            m_queue.erase(own);
+            run_task(task, lock);
+        } else {
+            ++m_waiting_own;
+            m_group_done.wait(lock);
+            --m_waiting_own;
+        }
+    }
+    rethrow_failure(group);
+}
+
+void TaskPool::rethrow_failure(TaskGroup& group)
+{
     if (group.error) {
         std::exception_ptr error = group.error;
         group.error = nullptr;

@@ -133,13 +133,11 @@ std::size_t compute_ranges_below(Bvh2View& view, TaskPool* pool, std::uint32_t n
         const std::uint32_t split = view.is_leaf(right) ? below_end : view.first(right);
         if (left != below || split < left + 2 || split > below_end)
             throw std::logic_error("wide BVH: the BVH2 is not in depth-first order");
-        // The right child's run as a task, the left one here; for_each waits for both before
+        // The right child's run as a task, the left one here; fork_join waits for both before
         // an exception leaves this frame, which the task refers to.
         std::size_t side_inner[2] = {0, 0};
-        pool->for_each(2, [&](std::size_t side) {
-            side_inner[side] = side == 0 ? compute_ranges_below(view, pool, left, left + 2, split)
-                                         : compute_ranges_below(view, pool, right, split, below_end);
-        });
+        pool->fork_join([&] { side_inner[0] = compute_ranges_below(view, pool, left, left + 2, split); },
+                        [&] { side_inner[1] = compute_ranges_below(view, pool, right, split, below_end); });
         inner = side_inner[0] + side_inner[1];
     }
     return inner + compute_node_range(view, node);

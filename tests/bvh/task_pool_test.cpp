@@ -1,7 +1,8 @@
 // TaskPool (host/bvh/task_pool.h), the fork-join pool of the BVH builder, flatten and the
 // wide collapse: every task runs exactly once, nested fork-join finishes (a waiting thread
-// runs queued tasks instead of blocking), failures reach the caller, worker indices stay
-// within the pool, and a later pool borrows the parked threads of an earlier one.
+// runs queued tasks instead of blocking), for_each's caller runs no task but its own while
+// it waits, failures reach the caller, worker indices stay within the pool, and a later
+// pool borrows the parked threads of an earlier one.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -35,16 +36,18 @@ TEST(TaskPool, ForEachRunsEveryIndexOnceOnValidWorkers)
     EXPECT_EQ(bad_index.load(), 0);
 }
 
-// Binary fork-join to depth 14 (16383 tasks), the builder's pattern: spawn the right half,
-// do the left, wait. Counts the leaves.
+// Binary fork-join to depth 14 (16383 tasks), the builder's pattern: the right half as a
+// task, the left one here, then the join (fork_join). Each node also bins "its triangles" in
+// four chunks first (for_each), as the builder's large nodes do. Counts the leaves.
 long count_leaves(TaskPool& pool, int depth)
 {
     if (depth == 0) return 1;
+    std::atomic<int> chunks{0};
+    pool.for_each(4, [&](std::size_t) { ++chunks; });
+    if (chunks.load() != 4) return -(1L << 20); // makes the total wrong
+    long left = 0;
     long right = 0;
-    TaskGroup group;
-    pool.spawn(group, [&pool, &right, depth] { right = count_leaves(pool, depth - 1); });
-    const long left = count_leaves(pool, depth - 1);
-    pool.wait(group);
+    pool.fork_join([&] { left = count_leaves(pool, depth - 1); }, [&] { right = count_leaves(pool, depth - 1); });
     return left + right;
 }
 
@@ -56,6 +59,55 @@ TEST(TaskPool, NestedForkJoinCompletes)
         std::printf("[ pool ] %d threads: %ld leaves (expected %d)\n", threads, leaves, 1 << 14);
         EXPECT_EQ(leaves, 1L << 14);
     }
+}
+
+// While it waits, for_each's caller runs its own chunks and nothing else: an unrelated task
+// queued meanwhile (by another thread, in the builder: a subtree) would hold back whatever
+// the chunks' end releases. Here the caller's own chunk queues it, so that it is the newest
+// task when the caller starts to wait; on a pool of one thread nothing else runs it.
+TEST(TaskPool, ForEachRunsOnlyItsOwnTasksWhileWaiting)
+{
+    TaskPool pool(1);
+    TaskGroup unrelated;
+    std::atomic<bool> unrelated_ran{false};
+    std::atomic<int> chunks{0};
+    pool.for_each(3, [&](std::size_t c) {
+        if (c == 0) pool.spawn(unrelated, [&] { unrelated_ran = true; });
+        ++chunks;
+    });
+    const bool ran_during_for_each = unrelated_ran.load();
+    pool.wait(unrelated);
+    std::printf("[ pool ] for_each ran %d of 3 chunks; the unrelated task ran %s\n", chunks.load(),
+                ran_during_for_each ? "inside for_each" : "after it, in wait()");
+    EXPECT_EQ(chunks.load(), 3);
+    EXPECT_FALSE(ran_during_for_each);
+    EXPECT_TRUE(unrelated_ran.load());
+}
+
+// wait() helps with any queued task: a thread whose group's last task is running elsewhere
+// takes the unrelated one meanwhile (here the worker's task cannot finish until it has).
+TEST(TaskPool, WaitRunsOtherTasksMeanwhile)
+{
+    TaskPool pool(2);
+    std::atomic<bool> worker_started{false};
+    std::atomic<bool> unrelated_ran{false};
+    std::atomic<bool> worker_saw_it{false};
+    TaskGroup mine;
+    pool.spawn(mine, [&] {
+        worker_started = true;
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (!unrelated_ran.load() && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+        worker_saw_it = unrelated_ran.load();
+    });
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (!worker_started.load() && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    ASSERT_TRUE(worker_started.load()) << "the worker never took the task";
+    TaskGroup unrelated;
+    pool.spawn(unrelated, [&] { unrelated_ran = true; });
+    pool.wait(mine);
+    pool.wait(unrelated);
+    std::printf("[ pool ] the waiting caller ran the unrelated task: %s\n", worker_saw_it.load() ? "yes" : "no");
+    EXPECT_TRUE(worker_saw_it.load());
 }
 
 // Which threads serve one pool's workers: a serial number per thread (a thread_local, so a
@@ -120,23 +172,34 @@ TEST(TaskPool, FailuresReachTheCaller)
     EXPECT_EQ(ran.load(), 100);
 }
 
-// The builder and the collapse fork with for_each(2, ...) because of this: when the caller's
-// own share throws, the other tasks, which refer to the caller's frame, have finished before
-// the exception leaves for_each.
-TEST(TaskPool, ForEachWaitsForItsTasksBeforeRethrowing)
+// The builder and the collapse fork with for_each and fork_join because of this: when the
+// caller's own share throws, the other tasks, which refer to the caller's frame, have
+// finished before the exception leaves.
+TEST(TaskPool, ForkJoinsWaitForTheirTasksBeforeRethrowing)
 {
     TaskPool pool(2);
     std::atomic<bool> task_done{false};
+    const auto slow_task = [&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        task_done = true;
+    };
     try {
         pool.for_each(2, [&](std::size_t i) {
             if (i == 0) throw std::runtime_error("the caller's share");
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-            task_done = true;
+            slow_task();
         });
-        FAIL() << "expected the caller's exception";
+        FAIL() << "expected the caller's exception from for_each";
     } catch (const std::runtime_error&) {
         EXPECT_TRUE(task_done.load()) << "for_each let the exception out while its task still ran";
     }
+    task_done = false;
+    try {
+        pool.fork_join([] { throw std::runtime_error("the caller's half"); }, slow_task);
+        FAIL() << "expected the caller's exception from fork_join";
+    } catch (const std::runtime_error&) {
+        EXPECT_TRUE(task_done.load()) << "fork_join let the exception out while its task still ran";
+    }
+    EXPECT_THROW(pool.fork_join([] {}, [] { throw std::logic_error("the task's half"); }), std::logic_error);
 }
 
 }  // namespace
