@@ -1,8 +1,9 @@
 // A small fork-join pool for the BVH builder, flatten and the wide collapse: a thread that
 // waits for its children runs queued tasks meanwhile (its own, or any: see for_each and
-// fork_join), so nested fork-join never deadlocks. Its workers are the process's parked worker threads, lent to the pool for its
-// lifetime and parked again by its destructor (threads are started only when no parked one is
-// free), so a render's three pools and a bench's many builds start no thread after the first.
+// fork_join), so nested fork-join never deadlocks. Its workers are the process's parked
+// worker threads, lent to the pool for its lifetime and parked again by its destructor
+// (threads are started only when no parked one is free), so a render's three pools and a
+// bench's many builds start no thread after the first.
 //
 //     TaskPool pool(threads);           // threads - 1 workers; the caller is worker 0
 //     TaskGroup group;
@@ -42,7 +43,7 @@ public:
 
     void spawn(TaskGroup& group, std::function<void()> task);
     // Returns when the group's tasks have all run, running queued tasks meanwhile: any task,
-    // the newest first (wait), or only the group's own (wait_own), else sleeping. Rethrow the
+    // the newest first (wait), or only the group's own (wait_own), else sleeping. Rethrows the
     // first exception of the group's tasks.
     void wait(TaskGroup& group);
     void wait_own(TaskGroup& group);
@@ -110,7 +111,7 @@ private:
     static void worker_loop(Worker* worker);
     void worker_main(int index);
     void run_task(Task& task, std::unique_lock<std::mutex>& lock);
-    static void rethrow_failure(TaskGroup& group);                 // lock held
+    static void rethrow_failure(TaskGroup& group); // with the lock held
     void release_workers() noexcept;
 
     std::mutex m_mutex;
