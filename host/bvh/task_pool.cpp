@@ -1,5 +1,6 @@
 #include "host/bvh/task_pool.h"
 
+#include <iterator>
 #include <memory>
 #include <thread>
 
@@ -192,52 +193,37 @@ void TaskPool::run_task(Task& task, std::unique_lock<std::mutex>& lock)
     }
 }
 
-void TaskPool::wait(TaskGroup& group)
+void TaskPool::wait(TaskGroup& group) { join(group, false); }
+
+void TaskPool::wait_own(TaskGroup& group) { join(group, true); }
+
+// The queued task a thread joining `group` runs next, or m_queue.end(). Any task: the newest,
+// the smallest and the most likely to be this thread's own child, still warm in its cache.
+// Own tasks: the group's newest (the queue is short: tasks are taken as they come).
+std::deque<TaskPool::Task>::iterator TaskPool::next_task_for(const TaskGroup& group, bool own_tasks_only)
+{
+    if (!own_tasks_only) return m_queue.empty() ? m_queue.end() : std::prev(m_queue.end());
+    for (auto it = m_queue.end(); it != m_queue.begin();)
+        if ((--it)->group == &group) return it;
+    return m_queue.end();
+}
+
+void TaskPool::join(TaskGroup& group, bool own_tasks_only)
 {
     std::unique_lock<std::mutex> lock(m_mutex);
     while (group.pending > 0) {
-        if (!m_queue.empty()) {
-            // Newest first: the most recently spawned task is the smallest and the most
-            // likely to be this thread's own child, still warm in its cache.
-            Task task = std::move(m_queue.back());
-            m_queue.pop_back();
+        const auto next = next_task_for(group, own_tasks_only);
+        if (next != m_queue.end()) {
+            Task task = std::move(*next);
+            m_queue.erase(next);
             run_task(task, lock);
-        } else {
-            ++m_waiting;
-            m_progress.wait(lock);
-            --m_waiting;
+            continue;
         }
+        int& sleepers = own_tasks_only ? m_waiting_own : m_waiting;
+        ++sleepers;
+        (own_tasks_only ? m_group_done : m_progress).wait(lock);
+        --sleepers;
     }
-    rethrow_failure(group);
-}
-
-void TaskPool::wait_own(TaskGroup& group)
-{
-    std::unique_lock<std::mutex> lock(m_mutex);
-    while (group.pending > 0) {
-        // The group's newest queued task; the queue is short (tasks are taken as they come).
-        auto own = m_queue.end();
-        for (auto it = m_queue.end(); it != m_queue.begin();) {
-            if ((--it)->group == &group) {
-                own = it;
-                break;
-            }
-        }
-        if (own != m_queue.end()) {
-            Task task = std::move(*own);
-            m_queue.erase(own);
-            run_task(task, lock);
-        } else {
-            ++m_waiting_own;
-            m_group_done.wait(lock);
-            --m_waiting_own;
-        }
-    }
-    rethrow_failure(group);
-}
-
-void TaskPool::rethrow_failure(TaskGroup& group)
-{
     if (group.error) {
         std::exception_ptr error = group.error;
         group.error = nullptr;

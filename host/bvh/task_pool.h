@@ -66,7 +66,7 @@ public:
             [&] {
                 if (count > 0) fn(std::size_t{0});
             },
-            false);
+            true);
     }
 
     // Runs left() on the calling thread and right() as a task, and returns when both have
@@ -78,7 +78,7 @@ public:
     {
         TaskGroup group;
         spawn(group, [&right] { right(); });
-        run_then_join(group, left, true);
+        run_then_join(group, left, false);
     }
 
     struct Worker; // a parked thread of the process (task_pool.cpp)
@@ -87,7 +87,7 @@ private:
     // The caller's share, then the join. The group's tasks refer to the caller's frame, so
     // they must have finished before an exception from either leaves it.
     template <class Own>
-    void run_then_join(TaskGroup& group, const Own& own, bool help_any)
+    void run_then_join(TaskGroup& group, const Own& own, bool own_tasks_only)
     {
         std::exception_ptr error;
         try {
@@ -96,8 +96,7 @@ private:
             error = std::current_exception();
         }
         try {
-            if (help_any) wait(group);
-            else wait_own(group);
+            join(group, own_tasks_only);
         } catch (...) {
             if (!error) error = std::current_exception();
         }
@@ -111,7 +110,8 @@ private:
     static void worker_loop(Worker* worker);
     void worker_main(int index);
     void run_task(Task& task, std::unique_lock<std::mutex>& lock);
-    static void rethrow_failure(TaskGroup& group); // with the lock held
+    std::deque<Task>::iterator next_task_for(const TaskGroup& group, bool own_tasks_only); // lock held
+    void join(TaskGroup& group, bool own_tasks_only); // wait() and wait_own()
     void release_workers() noexcept;
 
     std::mutex m_mutex;
