@@ -195,8 +195,6 @@ void TaskPool::run_task(Task& task, std::unique_lock<std::mutex>& lock)
 
 void TaskPool::wait(TaskGroup& group) { join(group, false); }
 
-void TaskPool::wait_own(TaskGroup& group) { join(group, true); }
-
 // The queued task a thread joining `group` runs next, or m_queue.end(). Any task: the newest,
 // the smallest and the most likely to be this thread's own child, still warm in its cache.
 // Own tasks: the group's newest (the queue is short: tasks are taken as they come).

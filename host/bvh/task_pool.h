@@ -42,15 +42,13 @@ public:
     int worker_index() const;
 
     void spawn(TaskGroup& group, std::function<void()> task);
-    // Returns when the group's tasks have all run, running queued tasks meanwhile: any task,
-    // the newest first (wait), or only the group's own (wait_own), else sleeping. Rethrows the
-    // first exception of the group's tasks.
+    // Returns when the group's tasks have all run, running any queued task meanwhile (the
+    // newest first), else sleeping. Rethrows the first exception of the group's tasks.
     void wait(TaskGroup& group);
-    void wait_own(TaskGroup& group);
 
     // Runs fn(0) .. fn(count - 1) and returns when all have run: fn(0) on the calling thread,
     // the rest as tasks of one group. Rethrows the first exception (the caller's own first).
-    // While it waits, the caller runs only these tasks (wait_own). They are the chunks of one
+    // While it waits, the caller runs only these tasks, else sleeps. They are the chunks of one
     // job, such as a node's binning, whose end releases more work (the node's partition, then
     // its children); an unrelated task picked up meanwhile, often a whole subtree, held that
     // work back while other threads ran dry. H200 host, tree speed against rtcBuildBVH, 4-5
@@ -111,7 +109,8 @@ private:
     void worker_main(int index);
     void run_task(Task& task, std::unique_lock<std::mutex>& lock);
     std::deque<Task>::iterator next_task_for(const TaskGroup& group, bool own_tasks_only); // lock held
-    void join(TaskGroup& group, bool own_tasks_only); // wait() and wait_own()
+    // wait(), or with own_tasks_only the join of for_each: only the group's own queued tasks.
+    void join(TaskGroup& group, bool own_tasks_only);
     void release_workers() noexcept;
 
     std::mutex m_mutex;
@@ -123,10 +122,11 @@ private:
     std::condition_variable m_work;     // a task was queued, or the pool stops (idle workers)
     std::condition_variable m_progress; // a task was queued or a group finished (threads in wait())
     int m_waiting = 0;                  // threads blocked in wait(), guarded by m_mutex
-    // Threads in wait_own() care only that a group finished (their own tasks were all queued
-    // before they waited), so a queued task does not wake them in place of a thread in wait().
+    // Threads joining their own tasks only care that a group finished (those tasks were all
+    // queued before they waited), so a queued task does not wake them in place of a thread in
+    // wait().
     std::condition_variable m_group_done;
-    int m_waiting_own = 0;              // threads blocked in wait_own(), guarded by m_mutex
+    int m_waiting_own = 0;              // threads blocked joining own tasks, guarded by m_mutex
     std::deque<Task> m_queue;
     bool m_stop = false;
     std::vector<Worker*> m_workers; // lent for the pool's lifetime
