@@ -34,6 +34,7 @@
 #include "tools/bench/embree_bench.h"
 #include "tools/bench/first_image.h"
 #include "tools/bench/host_cpu.h"
+#include "tools/bench/issue_roofline.h"
 #include "tools/bench/ocl_bench.h"
 #include "tools/bench/packet_probe.h"
 #include "tools/bench/rays.h"
@@ -176,6 +177,7 @@ struct DeviceSlot {
     cl::DeviceInfo info;
     std::unique_ptr<cl::Context> context;
     double bandwidth = 0.0; // bytes/s, GPUs only
+    IssueModel issue;       // the roofline's instruction half, GPUs only (issue_roofline.h)
     // Short: "[0] PoCL cpu"; the header line gives the full device name.
     std::string label() const
     {
@@ -371,6 +373,16 @@ void bench_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& 
                               "; uncached roofline %.0f B/ray (%.1f inner, %.1f tris) -> %.0f Mrays/s bound, at %.1f%%",
                               bytes, cost[k].inner_visits, cost[k].triangle_tests, bound, 100.0 * mrays / bound);
                 extra += buffer;
+                if (d.issue.available) {
+                    const double instructions = d.issue.instructions_per_ray(cost[k]);
+                    const double issue_bound = d.issue.bound_rays_per_s(cost[k]) / 1e6;
+                    j["roofline"]["ptx_instructions_per_ray"] = instructions;
+                    j["roofline"]["issue_bound_mrays_per_s"] = issue_bound;
+                    j["roofline"]["issue_fraction"] = mrays / issue_bound;
+                    std::snprintf(buffer, sizeof buffer, "; issue %.0f PTX instr/ray -> %.0f Mrays/s bound, at %.1f%%",
+                                  instructions, issue_bound, 100.0 * mrays / issue_bound);
+                    extra += buffer;
+                }
             }
             say("  %s %-7s: %.2f Mrays/s (%s)%s\n", d.label().c_str(), kind.name, mrays, form.c_str(), extra.c_str());
         }
@@ -643,6 +655,25 @@ void bench_packet_probe(const Options& o, std::vector<DeviceSlot>& devices, json
     }
 }
 
+// The GPU roofline's instruction half: the issue rate and what each unit of traversal
+// compiles to (issue_roofline.h), printed once per device; the ray lines then give each
+// figure's share of it.
+void report_issue_model(DeviceSlot& d, json& j)
+{
+    d.issue = issue_model(*d.context);
+    if (!d.issue.available) {
+        say("  %s: no issue-rate roofline: %s\n", d.label().c_str(), d.issue.why_not.c_str());
+        j["issue"] = {{"available", false}, {"why_not", d.issue.why_not}};
+        return;
+    }
+    say("  %s: issue rate %.1f T lane instructions/s (%s); PTX instructions per BVH2 unit "
+        "(kernels/roofline_probe.cl): ray set-up %.0f, inner node %.0f, triangle %.0f\n",
+        d.label().c_str(), d.issue.issue_rate / 1e12, d.issue.rate_text.c_str(), d.issue.setup, d.issue.inner,
+        d.issue.triangle);
+    j["issue"] = {{"available", true},     {"rate", d.issue.issue_rate}, {"rate_text", d.issue.rate_text},
+                  {"setup", d.issue.setup}, {"inner", d.issue.inner},     {"triangle", d.issue.triangle}};
+}
+
 int run(int argc, char** argv)
 {
     const Options o = parse(argc, argv);
@@ -681,6 +712,7 @@ int run(int argc, char** argv)
             d.bandwidth > 0 ? (", copy bandwidth " + std::to_string(int(d.bandwidth / 1e9)) + " GB/s").c_str() : "");
         doc["devices"][d.label()] = {{"type", d.info.type_name()}, {"compute_units", d.info.compute_units},
                                      {"local_size", d.context->default_local_size()}, {"bandwidth", d.bandwidth}};
+        if (d.info.is_gpu) report_issue_model(d, doc["devices"][d.label()]);
     }
 
     json summary;
