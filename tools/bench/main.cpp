@@ -660,7 +660,14 @@ void bench_packet_probe(const Options& o, std::vector<DeviceSlot>& devices, json
 // figure's share of it.
 void report_issue_model(DeviceSlot& d, json& j)
 {
-    d.issue = issue_model(*d.context);
+    // A probe that fails to build costs this figure only, not the run's other figures
+    // (bench_issue_roofline_test is where a broken probe fails).
+    try {
+        d.issue = issue_model(*d.context);
+    } catch (const std::exception& e) {
+        d.issue = {};
+        d.issue.why_not = std::string("kernels/roofline_probe.cl: ") + e.what();
+    }
     if (!d.issue.available) {
         say("  %s: no issue-rate roofline: %s\n", d.label().c_str(), d.issue.why_not.c_str());
         j["issue"] = {{"available", false}, {"why_not", d.issue.why_not}};
