@@ -21,6 +21,8 @@ std::string platform_string(cl_platform_id platform, cl_platform_info what)
     return text;
 }
 
+}  // namespace
+
 std::string device_string(cl_device_id device, cl_device_info what)
 {
     size_t size = 0;
@@ -33,6 +35,8 @@ std::string device_string(cl_device_id device, cl_device_info what)
     return text;
 }
 
+namespace {
+
 template <class T>
 T device_value(cl_device_id device, cl_device_info what)
 {
@@ -40,6 +44,12 @@ T device_value(cl_device_id device, cl_device_info what)
     GC_CL_WHAT("querying a device", clGetDeviceInfo, device, what, sizeof value, &value, nullptr);
     return value;
 }
+
+}  // namespace
+
+cl_uint device_uint(cl_device_id device, cl_device_info what) { return device_value<cl_uint>(device, what); }
+
+namespace {
 
 DeviceInfo describe(cl_platform_id platform, cl_device_id device)
 {

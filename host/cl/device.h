@@ -34,6 +34,11 @@ struct DeviceInfo {
     const char* type_name() const;
 };
 
+// One property of a device (clGetDeviceInfo): text without its terminator and trailing
+// spaces, or a cl_uint. Both throw ClError naming the query when the driver refuses it.
+std::string device_string(cl_device_id device, cl_device_info what);
+cl_uint device_uint(cl_device_id device, cl_device_info what);
+
 // Every available device with a compiler, on every platform, in platform then device order
 // (the order `--device <index>` counts in). No ICD loader, no platform or no device gives an
 // empty list, not an exception; `why_empty` (if given) then says why, for the error message.

@@ -298,6 +298,8 @@ void Program::release() noexcept
     m_program = nullptr;
 }
 
+std::vector<unsigned char> Program::binary() const { return program_binary(m_program); }
+
 Kernel Program::kernel(const char* name) const
 {
     cl_kernel kernel = GC_CL_CREATE(

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "host/cl/cl_api.h"
 #include "host/cl/context.h"
@@ -55,6 +56,9 @@ public:
     std::uint64_t cache_key() const { return m_key; }
     bool from_cache() const { return m_from_cache; }
     double build_seconds() const { return m_build_seconds; }  // cache load or compile, wall time
+    // The driver's binary for the device (CL_PROGRAM_BINARIES): what the cache stores; on
+    // NVIDIA's OpenCL, PTX text.
+    std::vector<unsigned char> binary() const;
 
 private:
     cl_program build_from_source(const Context& context) const;

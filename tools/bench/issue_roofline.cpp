@@ -6,53 +6,24 @@
 #include <string>
 #include <vector>
 
+#include "host/cl/device.h"
 #include "host/cl/program.h"
 #include "host/render/device_bvh.h"
 #include "tools/bench/ptx_count.h"
 
 namespace gc::bench {
-namespace {
-
-std::string device_extensions(cl_device_id device)
-{
-    std::size_t size = 0;
-    if (clGetDeviceInfo(device, CL_DEVICE_EXTENSIONS, 0, nullptr, &size) != CL_SUCCESS) return {};
-    std::string text(size, '\0');
-    if (clGetDeviceInfo(device, CL_DEVICE_EXTENSIONS, size, text.data(), nullptr) != CL_SUCCESS) return {};
-    return text;
-}
-
-cl_uint device_uint(cl_device_id device, cl_device_info what)
-{
-    cl_uint value = 0;
-    return clGetDeviceInfo(device, what, sizeof value, &value, nullptr) == CL_SUCCESS ? value : 0u;
-}
-
-// The program's binary for its one device; NVIDIA's is PTX text.
-std::string program_text(cl_program program)
-{
-    std::size_t size = 0;
-    if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, nullptr) != CL_SUCCESS || size == 0)
-        return {};
-    std::string text(size, '\0');
-    unsigned char* data = reinterpret_cast<unsigned char*>(text.data());
-    if (clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof data, &data, nullptr) != CL_SUCCESS) return {};
-    return text;
-}
-
-}  // namespace
 
 IssueModel issue_model(const cl::Context& context)
 {
     IssueModel m;
     const cl::DeviceInfo& info = context.device();
-    if (device_extensions(info.id).find("cl_nv_device_attribute_query") == std::string::npos) {
+    if (cl::device_string(info.id, CL_DEVICE_EXTENSIONS).find("cl_nv_device_attribute_query") == std::string::npos) {
         m.why_not = "needs NVIDIA's OpenCL (PTX binaries, cl_nv_device_attribute_query)";
         return m;
     }
-    const cl_uint major = device_uint(info.id, CL_DEVICE_COMPUTE_CAPABILITY_MAJOR_NV);
-    const cl_uint warp = device_uint(info.id, CL_DEVICE_WARP_SIZE_NV);
-    const cl_uint mhz = device_uint(info.id, CL_DEVICE_MAX_CLOCK_FREQUENCY);
+    const cl_uint major = cl::device_uint(info.id, CL_DEVICE_COMPUTE_CAPABILITY_MAJOR_NV);
+    const cl_uint warp = cl::device_uint(info.id, CL_DEVICE_WARP_SIZE_NV);
+    const cl_uint mhz = cl::device_uint(info.id, CL_DEVICE_MAX_CLOCK_FREQUENCY);
     // From Volta (7.0) on, an SM has four partitions, each issuing one warp instruction per
     // clock. Earlier GPUs differ by generation; they get no figure rather than a guess.
     if (major < 7 || warp == 0 || mhz == 0 || info.compute_units == 0) {
@@ -65,7 +36,8 @@ IssueModel issue_model(const cl::Context& context)
                   std::to_string(warp) + " lanes x " + std::to_string(mhz) + " MHz";
 
     const cl::Program program(context, "roofline_probe.cl", program_options(BvhLayout::Binary));
-    const std::string ptx = program_text(program.handle());
+    const std::vector<unsigned char> binary = program.binary();
+    const std::string ptx(binary.begin(), binary.end());
     if (!looks_like_ptx(ptx)) {
         m.why_not = "the driver's binary of roofline_probe.cl is not PTX";
         return m;
