@@ -16,8 +16,8 @@
  */
 #include "gc_traverse.h"
 
-/* The first ray of `rays[k]`'s traversal up to its first node: the ray precomputed with the
- * root's margin, and the root's entry (GC_AABB_MISS for an invalid ray). */
+/* The traversal of ray `rays[k]` up to its first node: the ray precomputed with the root's
+ * margin, and the root's entry (GC_AABB_MISS for an invalid ray). */
 float16 gc_probe_setup(__global const GcBvhNode* nodes, __global const GcRay* rays, uint k)
 {
     const GcRay ray = rays[k];
@@ -31,8 +31,8 @@ float16 gc_probe_setup(__global const GcBvhNode* nodes, __global const GcRay* ra
     out.s4567 = r.dir;
     out.s89ab = r.inv_dir;
     out.scdef = r.shear;
-    /* kz over inv_dir.w, the root's entry over the margin: both depend on what they replace,
-     * and kx, ky follow from kz (gc_ray_precompute). */
+    /* kz takes inv_dir.w's slot and the root's entry the margin's: those two feed the entry,
+     * so their work stays in, and kx, ky follow from kz (gc_ray_precompute). */
     out.sb = as_float(r.kz);
     out.sf = entry;
     return out;
