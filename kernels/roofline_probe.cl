@@ -68,8 +68,8 @@ float4 gc_probe_triangle(__global const GcTriangle* tris, const GcRayPre r, floa
     return (float4)(t_best, 0.0f, 0.0f, as_float(best_prim));
 }
 
-/* The per-work-item inputs of the inner and triangle units: a ray precomputed as the loop
- * holds it, the best t so far and what the unit reads next. */
+/* The precomputed ray the inner and triangle units start from, as the loop holds it (the
+ * kernels below pass its t_max as the best t so far). */
 GcRayPre gc_probe_ray(__global const float4* pre, uint k)
 {
     GcRayPre r;
