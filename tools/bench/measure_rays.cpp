@@ -1,0 +1,220 @@
+#include "tools/bench/measure_rays.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "host/util/host_threads.h"
+#include "tools/bench/bench_output.h"
+#include "tools/bench/ocl_bench.h"
+#include "tools/bench/rays.h"
+#include "tools/bench/timing.h"
+
+namespace gc::bench {
+
+using nlohmann::json;
+
+namespace {
+
+struct RayKind {
+    const char* name;
+    const std::vector<dev::GcRay>* rays;
+    bool any;
+};
+
+double agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b)
+{
+    if (a.empty() || a.size() != b.size()) return 0.0;
+    std::size_t same = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i];
+    return double(same) / double(a.size());
+}
+
+// Our forms of tracing `kind`: single rays, and packets of eight where the tracer has them
+// (closest hits only: there is no any-hit packet). Seconds: one entry per timed trace of the
+// set; results: the last trace's.
+struct DeviceRays {
+    std::vector<double> single_seconds;
+    std::vector<double> packet_seconds;
+    std::vector<std::uint32_t> single_result;
+    std::vector<std::uint32_t> packet_result;
+};
+
+bool traces_packets(const RayKind& kind, const OclTracer& tracer) { return !kind.any && tracer.has_packets(); }
+
+// Traces the set `repeats` times in each form, appending to `out`; returns our faster form's
+// rays per second in the last of them.
+double trace_on_device(const RayKind& kind, OclTracer& tracer, int repeats, DeviceRays& out)
+{
+    const double n = double(kind.rays->size());
+    const std::vector<double> single = kind.any ? tracer.occluded(*kind.rays, repeats, out.single_result)
+                                                : tracer.closest(*kind.rays, repeats, out.single_result);
+    out.single_seconds.insert(out.single_seconds.end(), single.begin(), single.end());
+    double best = single.empty() || !(single.back() > 0.0) ? 0.0 : n / single.back();
+    if (traces_packets(kind, tracer)) {
+        const std::vector<double> packets = tracer.closest_packets(*kind.rays, repeats, out.packet_result);
+        out.packet_seconds.insert(out.packet_seconds.end(), packets.begin(), packets.end());
+        if (!packets.empty() && packets.back() > 0.0) best = std::max(best, n / packets.back());
+    }
+    return best;
+}
+
+// A CPU device's timings, in rounds interleaved with Embree on the same cores: each round
+// times Embree's single-ray and 16-wide calls and then the device once in each of its forms,
+// so a change in the machine's load between them hits both sides alike. (Separate runs,
+// Embree's first, moved the ratio by up to 1.6x between runs a minute apart on a shared VM.)
+// Returns the median of the per-round ratios, our faster form to Embree's.
+double trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTracer& tracer, int threads, int rounds,
+                         DeviceRays& result)
+{
+    std::vector<double> ratios;
+    std::vector<std::uint32_t> embree_scratch;
+    for (int r = 0; r < rounds; ++r) {
+        double embree_best = 0.0;
+        for (int width : {1, 16}) {
+            const double t = kind.any ? embree.occluded(*kind.rays, threads, width, embree_scratch)
+                                      : embree.closest(*kind.rays, threads, width, embree_scratch);
+            embree_best = std::max(embree_best, double(kind.rays->size()) / t);
+        }
+        const double ours = trace_on_device(kind, tracer, 1, result);
+        if (ours > 0.0) ratios.push_back(ours / embree_best);
+    }
+    return ratios.empty() ? 0.0 : median(ratios);
+}
+
+}  // namespace
+
+void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
+                  const EmbreeTracer* embree, json& out)
+{
+    const int threads = host_thread_count();
+    const auto rays_start = Clock::now();
+    const int side = o.ray_side;
+    const RaySet set = make_rays(s.scene, bvh, s.camera, side, side, threads);
+    say("rays: %zu primary (%dx%d), %zu diffuse, %zu shadow (made in %.2f s)\n", set.primary.size(), side, side,
+        set.diffuse.size(), set.shadow.size(), seconds_since(rays_start));
+    const RayKind kinds[] = {{"primary", &set.primary, false}, {"diffuse", &set.diffuse, false}, {"shadow", &set.shadow, true}};
+
+    double embree_best[3] = {0, 0, 0};
+    std::vector<std::uint32_t> embree_result[3];
+    if (embree) {
+        for (int k = 0; k < 3; ++k) {
+            const RayKind& kind = kinds[k];
+            double best = 0.0;
+            std::string line;
+            for (int width : {1, 16}) {
+                std::vector<double> times;
+                std::vector<std::uint32_t> result;
+                for (int r = 0; r < o.repeats + 1; ++r) {
+                    const double t = kind.any ? embree->occluded(*kind.rays, threads, width, result)
+                                              : embree->closest(*kind.rays, threads, width, result);
+                    if (r > 0 || o.repeats == 1) times.push_back(t);
+                }
+                const double mrays = double(kind.rays->size()) / median(times) / 1e6;
+                out["rays"][kind.name]["embree"][width == 1 ? "single" : "packet16"] = json_number(mrays);
+                char buffer[96];
+                std::snprintf(buffer, sizeof buffer, "%s %.2f", width == 1 ? (kind.any ? "rtcOccluded1" : "rtcIntersect1")
+                                                                           : (kind.any ? "rtcOccluded16" : "rtcIntersect16"),
+                              mrays);
+                line += std::string(line.empty() ? "" : ", ") + buffer;
+                if (mrays > best) {
+                    best = mrays;
+                    embree_result[k] = result;
+                }
+            }
+            embree_best[k] = best;
+            out["rays"][kind.name]["embree"]["best"] = json_number(best);
+            say("  Embree %-7s (%d threads): %s Mrays/s\n", kind.name, threads, line.c_str());
+        }
+    }
+
+    bool have_cost = false;
+    TraversalCost cost[3];
+    for (DeviceSlot& d : devices) {
+        OclTracer tracer(*d.context, bvh);
+        const int repeats = d.info.is_gpu ? 4 * o.repeats : o.repeats;
+        for (int k = 0; k < 3; ++k) {
+            const RayKind& kind = kinds[k];
+            // A CPU is timed in the rounds interleaved with Embree; a GPU (or any device when
+            // there is no Embree) alone, and compared with Embree's medians above.
+            const bool interleave = embree && !d.info.is_gpu;
+            DeviceRays traced;
+            double to_embree = 0.0;
+            if (interleave) to_embree = trace_interleaved(kind, *embree, tracer, threads, repeats, traced);
+            else trace_on_device(kind, tracer, repeats, traced);
+            const auto mrays_of = [&](const std::vector<double>& t) {
+                return t.empty() ? 0.0 : double(kind.rays->size()) / median(t) / 1e6;
+            };
+            const double single = mrays_of(traced.single_seconds);
+            const double packets = mrays_of(traced.packet_seconds);
+            const bool packets_lead = packets > single;
+            const double mrays = std::max(single, packets);
+            // Packets must find the single rays' hits (gc_packet8.h promises the same bits; the
+            // device tests check it on test rays, this on every bench set).
+            if (traces_packets(kind, tracer) && traced.packet_result != traced.single_result) {
+                char buffer[160];
+                std::snprintf(buffer, sizeof buffer, "packets of eight found the single rays' hits on only %.3f%% of %zu %s rays",
+                              100.0 * agreement(traced.packet_result, traced.single_result), traced.single_result.size(),
+                              kind.name);
+                throw std::runtime_error(s.name + ", " + d.label() + ": " + buffer);
+            }
+            const std::vector<std::uint32_t>& result = traced.single_result;
+            json& j = out["rays"][kind.name]["devices"][d.label()];
+            j["mrays_per_s"] = json_number(mrays);
+            j["form"] = packets_lead ? "packets8" : "single";
+            j["single_mrays_per_s"] = json_number(single);
+            if (traces_packets(kind, tracer)) j["packets8_mrays_per_s"] = json_number(packets);
+            j["bvh_layout"] = tracer.layout();  // BVH2 on GPUs, BVH8 or BVH4 on CPUs
+            std::string form = tracer.layout();
+            if (traces_packets(kind, tracer)) {
+                char buffer[128];
+                std::snprintf(buffer, sizeof buffer, packets_lead ? ", packets of 8 neighbouring rays; single rays %.2f"
+                                                                  : ", single rays; packets of 8 neighbouring rays %.2f",
+                              packets_lead ? single : packets);
+                form += buffer;
+            }
+            std::string extra;
+            if (embree) {
+                const double agree = agreement(result, embree_result[k]);
+                if (!interleave) to_embree = mrays / embree_best[k];
+                j["ratio_to_embree"] = json_number(to_embree);
+                j["agreement_with_embree"] = agree;
+                char buffer[160];
+                std::snprintf(buffer, sizeof buffer, " = %.2fx Embree best%s; same result as Embree on %.3f%% of rays",
+                              to_embree, interleave ? " (median of per-round ratios)" : "", 100.0 * agree);
+                extra += buffer;
+            }
+            if (d.info.is_gpu && d.bandwidth > 0.0) {
+                if (!have_cost) {
+                    for (int c = 0; c < 3; ++c) cost[c] = traversal_cost(bvh, *kinds[c].rays, kinds[c].any, 65536);
+                    have_cost = true;
+                }
+                const double bytes = cost[k].bytes_per_ray();
+                const double bound = d.bandwidth / bytes / 1e6;
+                j["roofline"] = {{"bytes_per_ray", bytes}, {"inner_visits", cost[k].inner_visits},
+                                 {"triangle_tests", cost[k].triangle_tests}, {"bound_mrays_per_s", bound},
+                                 {"fraction", mrays / bound}};
+                char buffer[160];
+                std::snprintf(buffer, sizeof buffer,
+                              "; uncached roofline %.0f B/ray (%.1f inner, %.1f tris) -> %.0f Mrays/s bound, at %.1f%%",
+                              bytes, cost[k].inner_visits, cost[k].triangle_tests, bound, 100.0 * mrays / bound);
+                extra += buffer;
+                if (d.issue.available) {
+                    const double instructions = d.issue.instructions_per_ray(cost[k]);
+                    const double issue_bound = d.issue.bound_rays_per_s(cost[k]) / 1e6;
+                    j["roofline"]["ptx_instructions_per_ray"] = instructions;
+                    j["roofline"]["issue_bound_mrays_per_s"] = issue_bound;
+                    j["roofline"]["issue_fraction"] = mrays / issue_bound;
+                    std::snprintf(buffer, sizeof buffer, "; issue %.0f PTX instr/ray -> %.0f Mrays/s bound, at %.1f%%",
+                                  instructions, issue_bound, 100.0 * mrays / issue_bound);
+                    extra += buffer;
+                }
+            }
+            say("  %s %-7s: %.2f Mrays/s (%s)%s\n", d.label().c_str(), kind.name, mrays, form.c_str(), extra.c_str());
+        }
+    }
+}
+
+}  // namespace gc::bench
