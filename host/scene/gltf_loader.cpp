@@ -14,6 +14,7 @@
 #include <tiny_gltf.h>
 
 #include "host/math/transform.h"
+#include "host/scene/gltf_accessor.h"
 #include "host/scene/glb_check.h"
 #include "host/scene/gltf_files.h"
 #include "host/scene/gltf_images.h"
@@ -35,8 +36,6 @@ constexpr double k_pi = 3.14159265358979323846;
 // resident rendering on PoCL, ~480 bytes per triangle, rounded up.
 constexpr std::uint64_t k_max_scene_triangles = std::uint64_t{1} << 27;
 constexpr std::uint64_t k_host_bytes_per_triangle = 512;
-// Most elements an accessor without a bufferView (all zeros, so unbounded by the file) may claim.
-constexpr std::size_t k_max_zero_elements = std::size_t{1} << 24;
 
 std::string gibibytes(std::uint64_t bytes)
 {
@@ -52,77 +51,6 @@ std::uint64_t physical_memory_bytes()
     if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::uint64_t>::max();
     return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
 }
-
-// A validated view of an accessor's elements inside its buffer.
-struct AccessorView {
-    const unsigned char* base = nullptr; // first element; null = all zeros (no bufferView)
-    std::size_t stride = 0;
-    std::size_t count = 0;
-    int component_type = 0;
-    int components = 0;
-    bool normalized = false;
-
-    // Component k of element i as a float (normalized integers map to [0,1] / [-1,1]).
-    float get(std::size_t i, int k) const
-    {
-        if (!base) return 0.0f;
-        const unsigned char* p = base + i * stride;
-        switch (component_type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p + 4 * k, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { const float v = p[k]; return normalized ? v / 255.0f : v; }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-            std::int8_t v; std::memcpy(&v, p + k, 1);
-            return normalized ? std::fmax(v / 127.0f, -1.0f) : static_cast<float>(v);
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            std::uint16_t v; std::memcpy(&v, p + 2 * k, 2);
-            return normalized ? v / 65535.0f : static_cast<float>(v);
-        }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-            std::int16_t v; std::memcpy(&v, p + 2 * k, 2);
-            return normalized ? std::fmax(v / 32767.0f, -1.0f) : static_cast<float>(v);
-        }
-        default: return 0.0f;
-        }
-    }
-
-    std::uint32_t index(std::size_t i) const
-    {
-        if (!base) return 0;
-        const unsigned char* p = base + i * stride;
-        switch (component_type) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-        default: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-        }
-    }
-};
-
-std::string type_name(int type)
-{
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    default: return "type " + std::to_string(type);
-    }
-}
-
-std::string component_name(int ct)
-{
-    switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-    default: return "component type " + std::to_string(ct);
-    }
-}
-
-enum class Use { Position, Normal, TexCoord, Index, Tangent };
 
 class GltfConverter {
 public:
@@ -220,82 +148,10 @@ private:
         return m;
     }
 
-    // Checks accessor `index` against its bufferView and buffer and against what `use` allows.
-    AccessorView view(int index, Use use, const std::string& where) const
+    // Accessor `index`, checked for `use` (gltf_accessor.h).
+    AccessorView view(int index, AccessorUse use, const std::string& where) const
     {
-        const std::string ctx = where + ", accessor " + std::to_string(index) + ": ";
-        if (index < 0 || static_cast<std::size_t>(index) >= m_model.accessors.size())
-            fail(where + ": accessor index " + std::to_string(index) + " out of range (" +
-                 std::to_string(m_model.accessors.size()) + " accessors)");
-        const tinygltf::Accessor& a = m_model.accessors[static_cast<std::size_t>(index)];
-        if (a.sparse.isSparse) fail(ctx + "sparse accessors are not supported");
-
-        const int ct = a.componentType;
-        bool ok_type = false;
-        switch (use) {
-        case Use::Position:
-        case Use::Normal: ok_type = a.type == TINYGLTF_TYPE_VEC3 && ct == TINYGLTF_COMPONENT_TYPE_FLOAT; break;
-        case Use::TexCoord:
-            ok_type = a.type == TINYGLTF_TYPE_VEC2 &&
-                      (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                       (a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
-            break;
-        case Use::Index:
-            ok_type = a.type == TINYGLTF_TYPE_SCALAR &&
-                      (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
-                       ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
-            break;
-        case Use::Tangent: ok_type = a.type == TINYGLTF_TYPE_VEC4 && ct == TINYGLTF_COMPONENT_TYPE_FLOAT; break;
-        }
-        if (!ok_type) {
-            static const char* expected[] = {"VEC3 FLOAT", "VEC3 FLOAT", "VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT",
-                                             "SCALAR UNSIGNED_BYTE/SHORT/INT", "VEC4 FLOAT"};
-            fail(ctx + type_name(a.type) + " " + component_name(ct) + (a.normalized ? " (normalized)" : "") +
-                 " where " + expected[static_cast<int>(use)] + " is required");
-        }
-
-        AccessorView v;
-        v.count = a.count;
-        v.component_type = ct;
-        v.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-        v.normalized = a.normalized;
-        const std::size_t element = static_cast<std::size_t>(v.components) *
-                                    static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
-        if (a.bufferView < 0) {
-            // The spec allows an accessor with no bufferView: all zeros. Its count is not bounded
-            // by any bytes in the file, so a hostile count would make us allocate without limit
-            // (found by fuzz_gltf): accept only what a real mesh could need.
-            if (a.count > k_max_zero_elements)
-                fail(ctx + "has no bufferView (all zeros) but claims " + std::to_string(a.count) +
-                     " elements; more than " + std::to_string(k_max_zero_elements) + " is refused");
-            return v;
-        }
-        if (static_cast<std::size_t>(a.bufferView) >= m_model.bufferViews.size())
-            fail(ctx + "bufferView " + std::to_string(a.bufferView) + " out of range (" +
-                 std::to_string(m_model.bufferViews.size()) + " bufferViews)");
-        const tinygltf::BufferView& bv = m_model.bufferViews[static_cast<std::size_t>(a.bufferView)];
-        if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= m_model.buffers.size())
-            fail(ctx + "bufferView " + std::to_string(a.bufferView) + " names buffer " + std::to_string(bv.buffer) +
-                 ", out of range (" + std::to_string(m_model.buffers.size()) + " buffers)");
-        const tinygltf::Buffer& buffer = m_model.buffers[static_cast<std::size_t>(bv.buffer)];
-        if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
-            fail(ctx + "bufferView " + std::to_string(a.bufferView) + " (bytes " + std::to_string(bv.byteOffset) + " + " +
-                 std::to_string(bv.byteLength) + ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
-                 std::to_string(buffer.data.size()) + " bytes)");
-        v.stride = bv.byteStride ? bv.byteStride : element;
-        if (v.stride < element)
-            fail(ctx + "byteStride " + std::to_string(v.stride) + " is smaller than an element (" + std::to_string(element) + " bytes)");
-        if (v.count > 0) {
-            // count <= byteLength first, so the product below cannot overflow.
-            if (v.count > bv.byteLength || a.byteOffset > bv.byteLength ||
-                v.stride * (v.count - 1) + element > bv.byteLength - a.byteOffset)
-                fail(ctx + std::to_string(v.count) + " elements of " + std::to_string(element) + " bytes (stride " +
-                     std::to_string(v.stride) + ") from byte " + std::to_string(a.byteOffset) +
-                     " run past the end of bufferView " + std::to_string(a.bufferView) + " (" +
-                     std::to_string(bv.byteLength) + " bytes)");
-        }
-        v.base = buffer.data.data() + bv.byteOffset + a.byteOffset;
-        return v;
+        return gltf_accessor_view(m_model, index, use, m_name, where);
     }
 
     void add_mesh(int mesh_index, const Transform& to_world)
@@ -333,9 +189,9 @@ private:
             // bad accessor gets its own precise error here rather than a triangle total.
             const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
             if (prim.indices >= 0) {
-                triangles += view(prim.indices, Use::Index, where).count / 3;
+                triangles += view(prim.indices, AccessorUse::Index, where).count / 3;
             } else if (const auto pos = prim.attributes.find("POSITION"); pos != prim.attributes.end()) {
-                triangles += view(pos->second, Use::Position, where).count / 3;
+                triangles += view(pos->second, AccessorUse::Position, where).count / 3;
             }
         }
         m_planned_triangles += triangles;
@@ -353,7 +209,7 @@ private:
     {
         const auto pos_it = prim.attributes.find("POSITION");
         if (pos_it == prim.attributes.end()) fail(where + ": no POSITION attribute");
-        const AccessorView pos = view(pos_it->second, Use::Position, where);
+        const AccessorView pos = view(pos_it->second, AccessorUse::Position, where);
         const std::size_t nv = pos.count;
 
         // One uv set per triangle reaches the device: the one the material's textures read
@@ -367,11 +223,13 @@ private:
                              ", which the primitive lacks; TEXCOORD_0 used instead");
         }
         std::optional<AccessorView> nrm, uv;
-        if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) nrm = view(it->second, Use::Normal, where);
-        if (const auto it = prim.attributes.find(uv_name); it != prim.attributes.end()) uv = view(it->second, Use::TexCoord, where);
+        if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end())
+            nrm = view(it->second, AccessorUse::Normal, where);
+        if (const auto it = prim.attributes.find(uv_name); it != prim.attributes.end())
+            uv = view(it->second, AccessorUse::TexCoord, where);
         std::optional<AccessorView> tan;
         const auto tan_it = prim.attributes.find("TANGENT");
-        if (tan_it != prim.attributes.end()) tan = view(tan_it->second, Use::Tangent, where);
+        if (tan_it != prim.attributes.end()) tan = view(tan_it->second, AccessorUse::Tangent, where);
         if (nrm && nrm->count != nv)
             fail(where + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " + std::to_string(nv));
         if (uv && uv->count != nv)
@@ -380,7 +238,7 @@ private:
             fail(where + ": TANGENT has " + std::to_string(tan->count) + " elements, POSITION " + std::to_string(nv));
 
         std::optional<AccessorView> idx;
-        if (prim.indices >= 0) idx = view(prim.indices, Use::Index, where);
+        if (prim.indices >= 0) idx = view(prim.indices, AccessorUse::Index, where);
         const std::size_t corners = idx ? idx->count : nv;
         if (corners % 3 != 0)
             fail(where + ": " + std::to_string(corners) + (idx ? " indices" : " vertices") + " is not a multiple of 3");
