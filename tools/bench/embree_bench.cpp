@@ -115,6 +115,29 @@ void fill_ray(RTCRay& ray, const dev::GcRay& r)
     ray.flags = 0;
 }
 
+// Lanes 0-15 of a 16-ray packet from rays[base, base + 16), clamped to rays[end - 1], with
+// `valid` marking the lanes below `end` (the last packet of a range may be short).
+void fill_ray16(RTCRay16& ray, int* valid, const std::vector<dev::GcRay>& rays, std::size_t base, std::size_t end)
+{
+    for (int k = 0; k < 16; ++k) {
+        const std::size_t i = base + k;
+        valid[k] = i < end ? -1 : 0;
+        const dev::GcRay& r = rays[std::min(i, end - 1)];
+        ray.org_x[k] = r.org_tmin.x;
+        ray.org_y[k] = r.org_tmin.y;
+        ray.org_z[k] = r.org_tmin.z;
+        ray.tnear[k] = r.org_tmin.w;
+        ray.dir_x[k] = r.dir_tmax.x;
+        ray.dir_y[k] = r.dir_tmax.y;
+        ray.dir_z[k] = r.dir_tmax.z;
+        ray.tfar[k] = r.dir_tmax.w;
+        ray.time[k] = 0.0f;
+        ray.mask[k] = 0xffffffffu;
+        ray.id[k] = 0;
+        ray.flags[k] = 0;
+    }
+}
+
 }  // namespace
 
 bool embree_available() { return true; }
@@ -277,22 +300,8 @@ double EmbreeTracer::closest(const std::vector<dev::GcRay>& rays, int threads, i
             for (std::size_t base = begin; base < end; base += 16) {
                 alignas(64) RTCRayHit16 rh;
                 alignas(64) int valid[16];
+                fill_ray16(rh.ray, valid, rays, base, end);
                 for (int k = 0; k < 16; ++k) {
-                    const std::size_t i = base + k;
-                    valid[k] = i < end ? -1 : 0;
-                    const dev::GcRay& r = rays[std::min(i, end - 1)];
-                    rh.ray.org_x[k] = r.org_tmin.x;
-                    rh.ray.org_y[k] = r.org_tmin.y;
-                    rh.ray.org_z[k] = r.org_tmin.z;
-                    rh.ray.tnear[k] = r.org_tmin.w;
-                    rh.ray.dir_x[k] = r.dir_tmax.x;
-                    rh.ray.dir_y[k] = r.dir_tmax.y;
-                    rh.ray.dir_z[k] = r.dir_tmax.z;
-                    rh.ray.tfar[k] = r.dir_tmax.w;
-                    rh.ray.time[k] = 0.0f;
-                    rh.ray.mask[k] = 0xffffffffu;
-                    rh.ray.id[k] = 0;
-                    rh.ray.flags[k] = 0;
                     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
                     rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
                 }
@@ -331,23 +340,7 @@ double EmbreeTracer::occluded(const std::vector<dev::GcRay>& rays, int threads, 
             for (std::size_t base = begin; base < end; base += 16) {
                 alignas(64) RTCRay16 ray;
                 alignas(64) int valid[16];
-                for (int k = 0; k < 16; ++k) {
-                    const std::size_t i = base + k;
-                    valid[k] = i < end ? -1 : 0;
-                    const dev::GcRay& r = rays[std::min(i, end - 1)];
-                    ray.org_x[k] = r.org_tmin.x;
-                    ray.org_y[k] = r.org_tmin.y;
-                    ray.org_z[k] = r.org_tmin.z;
-                    ray.tnear[k] = r.org_tmin.w;
-                    ray.dir_x[k] = r.dir_tmax.x;
-                    ray.dir_y[k] = r.dir_tmax.y;
-                    ray.dir_z[k] = r.dir_tmax.z;
-                    ray.tfar[k] = r.dir_tmax.w;
-                    ray.time[k] = 0.0f;
-                    ray.mask[k] = 0xffffffffu;
-                    ray.id[k] = 0;
-                    ray.flags[k] = 0;
-                }
+                fill_ray16(ray, valid, rays, base, end);
                 rtcOccluded16(valid, scene, &context, &ray);
                 // An occluded ray's tfar becomes -inf.
                 for (int k = 0; k < 16 && base + k < end; ++k) flags[base + k] = ray.tfar[k] < 0.0f ? 1u : 0u;
