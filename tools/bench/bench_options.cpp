@@ -12,6 +12,52 @@ namespace gc::bench {
 
 namespace {
 
+constexpr const char* kUsage =
+    "Usage: geocold-bench [options]\n"
+    "\n"
+    "Measures, per OpenCL device and scene: BVH build speed and SAH cost; primary, diffuse and\n"
+    "shadow rays per second; path-traced samples per second (max depth 8, no Russian roulette);\n"
+    "time to first image with a cold and a warm kernel cache. On CPUs Embree 3 builds and traces\n"
+    "the same triangles and rays on the same cores in interleaved rounds, and each figure is\n"
+    "printed with its ratio to Embree's (the median of the per-round ratios). GPU ray figures\n"
+    "also give their share of a memory and an instruction-issue roofline.\n"
+    "\n"
+    "What and where:\n"
+    "  --device SPEC         all (default) | gpu | cpu | <index> | <name substring>, as\n"
+    "                        geocold-cl --list-devices shows them\n"
+    "  --scene LIST          comma-separated, from cornell, bunny, dragon, large, tiny (default:\n"
+    "                        cornell,bunny,dragon,large). The bunny and the dragon are read from\n"
+    "                        $GEOCOLD_SHARED_DIR/scenes (else from shared/ in or beside the\n"
+    "                        source tree) and skipped with a note when missing; large is a\n"
+    "                        5.2M-triangle mesh made on the spot; tiny is the Cornell box at\n"
+    "                        64x64\n"
+    "  --threads N           cap every CPU thread of the run: PoCL's workers, Embree's and the\n"
+    "                        host's (default: every core). With --threads 1 the per-core figure\n"
+    "                        is one thread's, the conditions of the Mitsuba llvm_ad_rgb anchor\n"
+    "How much:\n"
+    "  --quick               one repeat, 64x64 rays, the tiny scene unless --scene says\n"
+    "                        otherwise: a smoke test, not a measurement\n"
+    "  --repeats N           timed repeats or interleaved rounds per figure (default 5)\n"
+    "  --rays SIDE           SIDE x SIDE primary rays, from whose hits the diffuse and shadow\n"
+    "                        rays start (default 1024)\n"
+    "  --no-rays             skip the ray figures\n"
+    "  --no-path             skip the path-tracing figures\n"
+    "  --no-first-image      skip the time to first image\n"
+    "  --no-packet-probe     skip the explicit-SIMD probe (kernels/packet_probe.cl)\n"
+    "Renderer settings (0: the renderer's own choice, as geocold-cl makes it):\n"
+    "  --wavefront N         paths in flight per pass\n"
+    "  --samples-per-pass N  samples per pixel in one pass (a CPU plans passes of half a second,\n"
+    "                        in long runs up to two, and up to 256 samples:\n"
+    "                        host/render/pass_planner.h)\n"
+    "Output:\n"
+    "  --json                the figures as one JSON document on stdout (the text goes to\n"
+    "                        stderr), with each scene's view: tools/bench/mitsuba_yardstick.py\n"
+    "                        reads it to time Mitsuba 3 on the same view in the same run\n"
+    "  -h, --help            this text\n"
+    "\n"
+    "Exit status: 0 success, 1 a failed measurement (a device error, packets that disagree with\n"
+    "single rays), 2 bad command line.\n";
+
 std::vector<std::string> split(const std::string& s)
 {
     std::vector<std::string> out;
@@ -59,20 +105,7 @@ Options parse_options(int argc, char** argv)
         else if (a == "--first-image-scene") o.first_image_scene = value(i);
         else if (a == "--list-device-keys") o.list_device_keys = true;
         else if (a == "--help" || a == "-h") {
-            std::printf("usage: geocold-bench [--device all|gpu|cpu|N|text] [--scene cornell,bunny,dragon,large]\n"
-                        "                     [--quick] [--json] [--repeats N] [--rays SIDE] [--no-path]\n"
-                        "                     [--no-rays] [--no-first-image] [--no-packet-probe] [--threads N]\n"
-                        "                     [--wavefront N] [--samples-per-pass N]\n"
-                        "--threads N caps every CPU thread of the run: PoCL's workers, Embree's and the host's\n"
-                        "(default: every core). With --threads 1 the per-core figure is one thread's, the\n"
-                        "conditions of the Mitsuba llvm_ad_rgb anchor.\n"
-                        "--json puts each scene's view in the document too; tools/bench/mitsuba_yardstick.py\n"
-                        "reads it to time Mitsuba 3 on the same view in the same run (the anchors are fixed\n"
-                        "figures from another day).\n"
-                        "--wavefront N and --samples-per-pass N (0: the default) fix what the renderer otherwise\n"
-                        "chooses per device: paths in flight per pass, and samples per pixel in one pass (a CPU\n"
-                        "plans passes of half a second, in long runs up to two, and up to 256 samples:\n"
-                        "host/render/pass_planner.h).\n");
+            std::fputs(kUsage, stdout);
             std::exit(0);
         } else {
             throw UsageError("unknown option '" + a + "' (see --help)");
