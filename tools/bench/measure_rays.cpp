@@ -84,6 +84,75 @@ double trace_interleaved(const RayKind& kind, const EmbreeTracer& embree, OclTra
     return ratios.empty() ? 0.0 : median(ratios);
 }
 
+// Embree's figures for the three kinds: the better of rtcIntersect1/rtcOccluded1 and their
+// 16-wide forms, each the median of `repeats` timed traces after one untimed, and the hits of
+// the better one, which the devices' hits are compared with.
+struct EmbreeRays {
+    double best[3] = {0, 0, 0};               // Mrays/s
+    std::vector<std::uint32_t> result[3];
+};
+
+EmbreeRays time_embree(const RayKind (&kinds)[3], const EmbreeTracer& embree, int threads, int repeats, json& out)
+{
+    EmbreeRays e;
+    for (int k = 0; k < 3; ++k) {
+        const RayKind& kind = kinds[k];
+        std::string line;
+        for (int width : {1, 16}) {
+            std::vector<double> times;
+            std::vector<std::uint32_t> result;
+            for (int r = 0; r < repeats + 1; ++r) {
+                const double t = kind.any ? embree.occluded(*kind.rays, threads, width, result)
+                                          : embree.closest(*kind.rays, threads, width, result);
+                if (r > 0 || repeats == 1) times.push_back(t);
+            }
+            const double mrays = double(kind.rays->size()) / median(times) / 1e6;
+            out["rays"][kind.name]["embree"][width == 1 ? "single" : "packet16"] = json_number(mrays);
+            char buffer[96];
+            std::snprintf(buffer, sizeof buffer, "%s %.2f", width == 1 ? (kind.any ? "rtcOccluded1" : "rtcIntersect1")
+                                                                       : (kind.any ? "rtcOccluded16" : "rtcIntersect16"),
+                          mrays);
+            line += std::string(line.empty() ? "" : ", ") + buffer;
+            if (mrays > e.best[k]) {
+                e.best[k] = mrays;
+                e.result[k] = result;
+            }
+        }
+        out["rays"][kind.name]["embree"]["best"] = json_number(e.best[k]);
+        say("  Embree %-7s (%d threads): %s Mrays/s\n", kind.name, threads, line.c_str());
+    }
+    return e;
+}
+
+// A GPU ray figure as a share of the two bounds derived from `cost` (the host's count of the
+// same rays' traversal work): bytes per ray against the device's copy bandwidth, and, where
+// the issue model exists, PTX instructions per ray against its issue rate. Fills
+// j["roofline"]; returns the text for the ray line.
+std::string roofline_report(const DeviceSlot& d, const TraversalCost& cost, double mrays, json& j)
+{
+    const double bytes = cost.bytes_per_ray();
+    const double bound = d.bandwidth / bytes / 1e6;
+    j["roofline"] = {{"bytes_per_ray", bytes}, {"inner_visits", cost.inner_visits},
+                     {"triangle_tests", cost.triangle_tests}, {"bound_mrays_per_s", bound},
+                     {"fraction", mrays / bound}};
+    char buffer[160];
+    std::snprintf(buffer, sizeof buffer,
+                  "; uncached roofline %.0f B/ray (%.1f inner, %.1f tris) -> %.0f Mrays/s bound, at %.1f%%", bytes,
+                  cost.inner_visits, cost.triangle_tests, bound, 100.0 * mrays / bound);
+    std::string text = buffer;
+    if (d.issue.available) {
+        const double instructions = d.issue.instructions_per_ray(cost);
+        const double issue_bound = d.issue.bound_rays_per_s(cost) / 1e6;
+        j["roofline"]["ptx_instructions_per_ray"] = instructions;
+        j["roofline"]["issue_bound_mrays_per_s"] = issue_bound;
+        j["roofline"]["issue_fraction"] = mrays / issue_bound;
+        std::snprintf(buffer, sizeof buffer, "; issue %.0f PTX instr/ray -> %.0f Mrays/s bound, at %.1f%%",
+                      instructions, issue_bound, 100.0 * mrays / issue_bound);
+        text += buffer;
+    }
+    return text;
+}
+
 }  // namespace
 
 void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
@@ -97,38 +166,8 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
         set.diffuse.size(), set.shadow.size(), seconds_since(rays_start));
     const RayKind kinds[] = {{"primary", &set.primary, false}, {"diffuse", &set.diffuse, false}, {"shadow", &set.shadow, true}};
 
-    double embree_best[3] = {0, 0, 0};
-    std::vector<std::uint32_t> embree_result[3];
-    if (embree) {
-        for (int k = 0; k < 3; ++k) {
-            const RayKind& kind = kinds[k];
-            double best = 0.0;
-            std::string line;
-            for (int width : {1, 16}) {
-                std::vector<double> times;
-                std::vector<std::uint32_t> result;
-                for (int r = 0; r < o.repeats + 1; ++r) {
-                    const double t = kind.any ? embree->occluded(*kind.rays, threads, width, result)
-                                              : embree->closest(*kind.rays, threads, width, result);
-                    if (r > 0 || o.repeats == 1) times.push_back(t);
-                }
-                const double mrays = double(kind.rays->size()) / median(times) / 1e6;
-                out["rays"][kind.name]["embree"][width == 1 ? "single" : "packet16"] = json_number(mrays);
-                char buffer[96];
-                std::snprintf(buffer, sizeof buffer, "%s %.2f", width == 1 ? (kind.any ? "rtcOccluded1" : "rtcIntersect1")
-                                                                           : (kind.any ? "rtcOccluded16" : "rtcIntersect16"),
-                              mrays);
-                line += std::string(line.empty() ? "" : ", ") + buffer;
-                if (mrays > best) {
-                    best = mrays;
-                    embree_result[k] = result;
-                }
-            }
-            embree_best[k] = best;
-            out["rays"][kind.name]["embree"]["best"] = json_number(best);
-            say("  Embree %-7s (%d threads): %s Mrays/s\n", kind.name, threads, line.c_str());
-        }
-    }
+    EmbreeRays embree_rays;
+    if (embree) embree_rays = time_embree(kinds, *embree, threads, o.repeats, out);
 
     bool have_cost = false;
     TraversalCost cost[3];
@@ -177,8 +216,8 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
             }
             std::string extra;
             if (embree) {
-                const double agree = agreement(result, embree_result[k]);
-                if (!interleave) to_embree = mrays / embree_best[k];
+                const double agree = agreement(result, embree_rays.result[k]);
+                if (!interleave) to_embree = mrays / embree_rays.best[k];
                 j["ratio_to_embree"] = json_number(to_embree);
                 j["agreement_with_embree"] = agree;
                 char buffer[160];
@@ -191,26 +230,7 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
                     for (int c = 0; c < 3; ++c) cost[c] = traversal_cost(bvh, *kinds[c].rays, kinds[c].any, 65536);
                     have_cost = true;
                 }
-                const double bytes = cost[k].bytes_per_ray();
-                const double bound = d.bandwidth / bytes / 1e6;
-                j["roofline"] = {{"bytes_per_ray", bytes}, {"inner_visits", cost[k].inner_visits},
-                                 {"triangle_tests", cost[k].triangle_tests}, {"bound_mrays_per_s", bound},
-                                 {"fraction", mrays / bound}};
-                char buffer[160];
-                std::snprintf(buffer, sizeof buffer,
-                              "; uncached roofline %.0f B/ray (%.1f inner, %.1f tris) -> %.0f Mrays/s bound, at %.1f%%",
-                              bytes, cost[k].inner_visits, cost[k].triangle_tests, bound, 100.0 * mrays / bound);
-                extra += buffer;
-                if (d.issue.available) {
-                    const double instructions = d.issue.instructions_per_ray(cost[k]);
-                    const double issue_bound = d.issue.bound_rays_per_s(cost[k]) / 1e6;
-                    j["roofline"]["ptx_instructions_per_ray"] = instructions;
-                    j["roofline"]["issue_bound_mrays_per_s"] = issue_bound;
-                    j["roofline"]["issue_fraction"] = mrays / issue_bound;
-                    std::snprintf(buffer, sizeof buffer, "; issue %.0f PTX instr/ray -> %.0f Mrays/s bound, at %.1f%%",
-                                  instructions, issue_bound, 100.0 * mrays / issue_bound);
-                    extra += buffer;
-                }
+                extra += roofline_report(d, cost[k], mrays, j);
             }
             say("  %s %-7s: %.2f Mrays/s (%s)%s\n", d.label().c_str(), kind.name, mrays, form.c_str(), extra.c_str());
         }
