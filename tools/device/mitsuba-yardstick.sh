@@ -44,7 +44,9 @@ run() { # name, args...
         grep -v "WARN" >> "$out/yardstick.txt"
     local s=${PIPESTATUS[0]}
     [ "$s" = 0 ] || { echo "  ($name: exit $s)" >> "$out/yardstick.txt"; [ "$status" != 0 ] || status=$s; }
+    [ "$s" != 0 ] || succeeded="$succeeded$name "
 }
+succeeded=" "  # the steps whose JSON this run wrote
 # GEOCOLD_YARDSTICK_STEPS picks steps; the -avx2 ones pin Mitsuba to eight lanes
 # (--mitsuba-lanes 8), which tells how much of a CPU ratio is Dr.Jit's 16 AVX-512 lanes.
 for step in ${GEOCOLD_YARDSTICK_STEPS:-cpu-1 cpu-all gpu}; do
@@ -56,6 +58,14 @@ for step in ${GEOCOLD_YARDSTICK_STEPS:-cpu-1 cpu-all gpu}; do
     gpu) run "$step" --device gpu "$@" ;;
     *) echo "unknown step '$step' in GEOCOLD_YARDSTICK_STEPS" >&2; exit 2 ;;
     esac
+done
+# Where both a one-thread and an every-core step ran: how much each side grew between them
+# (a ratio that falls with the thread count is then a scaling loss, not a one-thread figure).
+for lanes in "" -avx2; do
+    if [[ $succeeded == *" cpu-1$lanes "* && $succeeded == *" cpu-all$lanes "* ]]; then
+        python3 tools/bench/yardstick_scaling.py "$out/yardstick-cpu-1$lanes.json" "$out/yardstick-cpu-all$lanes.json" \
+            >> "$out/yardstick.txt" 2>&1
+    fi
 done
 cat "$out/yardstick.txt"
 exit "$status"
