@@ -17,9 +17,10 @@ from __future__ import annotations
 
 import json
 import sys
+from typing import NoReturn
 
 
-def fail(message: str) -> None:
+def fail(message: str) -> NoReturn:
     print(f"yardstick_scaling: {message}", file=sys.stderr)
     sys.exit(2)
 
