@@ -8,12 +8,24 @@
 // code than for AVX-512 code, but all cores busy clock alike, a one-thread ratio flatters
 // scalar code and a 16-thread ratio does not.
 //
-//   g++ -O2 -std=c++20 -pthread -mavx512f -mfma tools/bench/experiments/clock_probe.cpp -o clock_probe
+//   g++ -O2 -std=c++20 -pthread tools/bench/experiments/clock_probe.cpp -o clock_probe
 //   ./clock_probe [seconds per run, default 2] [rounds, default 3] [threads, default every CPU]
 //
 // Prints, per kernel and round, the median per-thread rate with one thread and with all of
 // them, and their ratio; then the median ratio per kernel.
+//
+// Two more modes (session 25), to tell apart what slows a thread when the others are busy:
+//   ./clock_probe siblings [seconds, default 0.5]
+//       CPU 0's rate alone and with one companion pinned to CPU k, for every k, running the
+//       same kernel. A guest's "one thread per core" may still share a host core with
+//       another vCPU (its SMT sibling): a port-bound kernel then loses up to half on that k.
+//   ./clock_probe load KIND FIRST LAST SECONDS
+//       Keeps CPUs FIRST..LAST busy with KIND (scalar, scalar-ipc, avx2-fma, avx512-fma) for
+//       SECONDS, one pinned thread each, so that another program can be timed on the CPUs
+//       left free while the rest of the package runs that kind of code.
 #include <immintrin.h>
+#include <pthread.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <atomic>
@@ -21,6 +33,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -42,6 +56,27 @@ std::uint64_t scalar_blocks(std::uint64_t blocks, std::uint64_t seed)
             asm volatile("" : "+r"(x));
         }
     return x;
+}
+
+// Scalar at high IPC: eight independent integer chains (add, xor, rotate) that keep the ALU
+// ports full, the kind of code an SMT sibling competes with.
+std::uint64_t scalar_ipc_blocks(std::uint64_t blocks, std::uint64_t seed)
+{
+    std::uint64_t x0 = seed, x1 = seed + 1, x2 = seed + 2, x3 = seed + 3, x4 = seed + 4, x5 = seed + 5,
+                  x6 = seed + 6, x7 = seed + 7;
+    for (std::uint64_t b = 0; b < blocks; ++b)
+        for (int i = 0; i < kStepsPerBlock / 8; ++i) {
+            x0 = (x0 + 0x9e3779b97f4a7c15ull) ^ (x1 >> 7);
+            x1 = (x1 + 0x632be59bd9b4e019ull) ^ (x2 << 9);
+            x2 = (x2 + 0x85157af5ull) ^ (x3 >> 11);
+            x3 = (x3 + 0x27bb2ee687b0b0fdull) ^ (x4 << 13);
+            x4 = (x4 + 0x94d049bb133111ebull) ^ (x5 >> 5);
+            x5 = (x5 + 0xbf58476d1ce4e5b9ull) ^ (x6 << 3);
+            x6 = (x6 + 0x2545f4914f6cdd1dull) ^ (x7 >> 17);
+            x7 = (x7 + 0x5851f42d4c957f2dull) ^ (x0 << 15);
+            asm volatile("" : "+r"(x0), "+r"(x1), "+r"(x2), "+r"(x3), "+r"(x4), "+r"(x5), "+r"(x6), "+r"(x7));
+        }
+    return x0 ^ x1 ^ x2 ^ x3 ^ x4 ^ x5 ^ x6 ^ x7;
 }
 
 // Eight independent FMA chains in registers, enough to keep two FMA ports busy at 4 cycles of
@@ -124,10 +159,106 @@ double per_thread_rate(const Kernel& kernel, int threads, double seconds)
     return median(rates);
 }
 
+// Pins the calling thread to one CPU; false where the CPU is not ours to run on.
+bool pin_to_cpu(int cpu)
+{
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(cpu, &set);
+    return pthread_setaffinity_np(pthread_self(), sizeof(set), &set) == 0;
+}
+
+const Kernel* kernel_named(const std::vector<Kernel>& kernels, const std::string& name)
+{
+    for (const Kernel& k : kernels)
+        if (name == k.name) return &k;
+    return nullptr;
+}
+
+// Blocks per second of `kernel` on CPU 0 for `seconds`, while `companion_cpu` (if >= 0) runs
+// the same kernel for as long.
+double rate_on_cpu0(const Kernel& kernel, int companion_cpu, double seconds)
+{
+    std::atomic<bool> stop{false};
+    std::thread companion;
+    if (companion_cpu >= 0)
+        companion = std::thread([&] {
+            pin_to_cpu(companion_cpu);
+            std::uint64_t sink = 0, blocks = 0;
+            while (!stop.load()) sink += kernel.run(64, blocks += 64);
+            g_sink.fetch_add(sink);
+        });
+    double rate = 0.0;
+    std::thread measured([&] {
+        pin_to_cpu(0);
+        const auto start = Clock::now();
+        std::uint64_t blocks = 0, sink = 0;
+        double elapsed = 0.0;
+        while (elapsed < seconds) {
+            sink += kernel.run(64, blocks);
+            blocks += 64;
+            elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+        }
+        g_sink.fetch_add(sink);
+        rate = double(blocks) / elapsed;
+    });
+    measured.join();
+    stop = true;
+    if (companion.joinable()) companion.join();
+    return rate;
+}
+
+int siblings_mode(const std::vector<Kernel>& kernels, double seconds)
+{
+    const int cpus = static_cast<int>(std::thread::hardware_concurrency());
+    std::printf("clock_probe siblings: CPU 0's rate with a companion on CPU k over CPU 0 alone (alone measured "
+                "before and after each k), %.2f s per run\n", seconds);
+    for (const Kernel& k : kernels) {
+        std::printf("  %-10s", k.name);
+        for (int cpu = 1; cpu < cpus; ++cpu) {
+            const double before = rate_on_cpu0(k, -1, seconds);
+            const double paired = rate_on_cpu0(k, cpu, seconds);
+            const double after = rate_on_cpu0(k, -1, seconds);
+            std::printf(" %d:%.2f", cpu, paired / (0.5 * (before + after)));
+            std::fflush(stdout);
+        }
+        std::printf("\n");
+    }
+    return 0;
+}
+
+int load_mode(const std::vector<Kernel>& kernels, const std::string& kind, int first, int last, double seconds)
+{
+    const Kernel* kernel = kernel_named(kernels, kind);
+    if (!kernel || first < 0 || last < first || !(seconds > 0.0)) {
+        std::fprintf(stderr, "usage: clock_probe load scalar|scalar-ipc|avx2-fma|avx512-fma FIRST LAST SECONDS\n");
+        return 2;
+    }
+    std::vector<std::thread> pool;
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    for (int cpu = first; cpu <= last; ++cpu)
+        pool.emplace_back([&, cpu] {
+            if (!pin_to_cpu(cpu)) std::fprintf(stderr, "clock_probe: cannot pin to CPU %d\n", cpu);
+            std::uint64_t sink = 0, blocks = 0;
+            while (Clock::now() < end) sink += kernel->run(64, blocks += 64);
+            g_sink.fetch_add(sink);
+        });
+    for (std::thread& th : pool) th.join();
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
 {
+    std::vector<Kernel> kernels = {{"scalar", scalar_blocks}, {"scalar-ipc", scalar_ipc_blocks}, {"avx2-fma", avx2_blocks}};
+    if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512-fma", avx512_blocks});
+    if (argc > 1 && std::strcmp(argv[1], "siblings") == 0)
+        return siblings_mode(kernels, argc > 2 ? std::atof(argv[2]) : 0.5);
+    if (argc > 1 && std::strcmp(argv[1], "load") == 0) {
+        if (argc != 6) return load_mode(kernels, "", -1, -1, 0.0);
+        return load_mode(kernels, argv[2], std::atoi(argv[3]), std::atoi(argv[4]), std::atof(argv[5]));
+    }
     const double seconds = argc > 1 ? std::atof(argv[1]) : 2.0;
     const int rounds = argc > 2 ? std::atoi(argv[2]) : 3;
     const int threads = argc > 3 ? std::atoi(argv[3]) : static_cast<int>(std::thread::hardware_concurrency());
@@ -135,8 +266,6 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "usage: clock_probe [seconds > 0] [rounds >= 1] [threads >= 1]\n");
         return 2;
     }
-    std::vector<Kernel> kernels = {{"scalar", scalar_blocks}, {"avx2-fma", avx2_blocks}};
-    if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512-fma", avx512_blocks});
     std::printf("clock_probe: %d threads, %.1f s per run, %d rounds; per-thread rate with all threads busy / "
                 "with one thread\n", threads, seconds, rounds);
     for (const Kernel& k : kernels) {
