@@ -58,7 +58,7 @@ std::uint64_t scalar_blocks(std::uint64_t blocks, std::uint64_t seed)
     return x;
 }
 
-// Scalar at high IPC: eight independent integer chains (add, xor, rotate) that keep the ALU
+// Scalar at high IPC: eight independent integer chains (add, shift, xor) that keep the ALU
 // ports full, the kind of code an SMT sibling competes with.
 std::uint64_t scalar_ipc_blocks(std::uint64_t blocks, std::uint64_t seed)
 {
@@ -132,6 +132,21 @@ double median(std::vector<double> v)
 
 std::atomic<std::uint64_t> g_sink{0};
 
+// Runs `kernel` on the calling thread for about `seconds`; returns its blocks per second.
+double blocks_per_second(const Kernel& kernel, std::uint64_t seed, double seconds)
+{
+    const auto start = Clock::now();
+    std::uint64_t blocks = 0, sink = 0;
+    double elapsed = 0.0;
+    while (elapsed < seconds) {
+        sink += kernel.run(64, blocks + seed);
+        blocks += 64;
+        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    }
+    g_sink.fetch_add(sink);
+    return double(blocks) / elapsed;
+}
+
 // Runs `kernel` on `threads` threads for about `seconds`; returns the median per-thread rate
 // in blocks per second. The threads start together and each times only its own work.
 double per_thread_rate(const Kernel& kernel, int threads, double seconds)
@@ -144,16 +159,7 @@ double per_thread_rate(const Kernel& kernel, int threads, double seconds)
             ready.fetch_add(1);
             while (ready.load() < threads) {
             }
-            const auto start = Clock::now();
-            std::uint64_t blocks = 0, sink = 0;
-            double elapsed = 0.0;
-            while (elapsed < seconds) {
-                sink += kernel.run(64, blocks + static_cast<std::uint64_t>(t));
-                blocks += 64;
-                elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-            }
-            g_sink.fetch_add(sink);
-            rates[static_cast<std::size_t>(t)] = double(blocks) / elapsed;
+            rates[static_cast<std::size_t>(t)] = blocks_per_second(kernel, static_cast<std::uint64_t>(t), seconds);
         });
     for (std::thread& th : pool) th.join();
     return median(rates);
@@ -191,16 +197,7 @@ double rate_on_cpu0(const Kernel& kernel, int companion_cpu, double seconds)
     double rate = 0.0;
     std::thread measured([&] {
         pin_to_cpu(0);
-        const auto start = Clock::now();
-        std::uint64_t blocks = 0, sink = 0;
-        double elapsed = 0.0;
-        while (elapsed < seconds) {
-            sink += kernel.run(64, blocks);
-            blocks += 64;
-            elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-        }
-        g_sink.fetch_add(sink);
-        rate = double(blocks) / elapsed;
+        rate = blocks_per_second(kernel, 0, seconds);
     });
     measured.join();
     stop = true;

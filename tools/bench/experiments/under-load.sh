@@ -11,6 +11,9 @@ here=$(cd "$(dirname "$0")" && pwd)
 probe=${TMPDIR:-/tmp}/geocold-clock-probe
 g++ -O2 -std=c++20 -pthread "$here/clock_probe.cpp" -o "$probe"
 last=$(($(nproc) - 1))
+pid=
+# An interrupted run must not leave the load spinning for its hour.
+trap '[ -z "$pid" ] || kill "$pid" 2>/dev/null || true' EXIT
 for kind in $kinds; do
     echo "== under-load: CPU 0 runs the command; CPUs 1-$last run: $kind"
     pid=
@@ -21,6 +24,6 @@ for kind in $kinds; do
     fi
     status=0
     taskset -c 0 "$@" || status=$?
-    [ -z "$pid" ] || { kill "$pid"; wait "$pid" 2>/dev/null || true; }
+    [ -z "$pid" ] || { kill "$pid"; wait "$pid" 2>/dev/null || true; pid=; }
     [ "$status" = 0 ] || { echo "under-load: the command failed under $kind (exit $status)" >&2; exit "$status"; }
 done
