@@ -185,16 +185,21 @@ def read_pfm(path: str):
     return width, height, rgb
 
 
+def geocold_command(geocold: str, view, device: str, spp: int, out: str, extra=()) -> list:
+    """The geocold-cl command line that renders a geocold-bench view to `out`."""
+    triple = lambda v: ",".join(repr(float(x)) for x in v)
+    return [geocold, view["source"], "--quiet", "--device", device, "--spp", str(spp),
+            "--res", f"{view['width']}x{view['height']}", "--max-depth", str(view["max_depth"]),
+            "--rr-depth", str(view["rr_depth"]), f"--look-from={triple(view['look_from'])}",
+            f"--look-at={triple(view['look_at'])}", f"--up={triple(view['up'])}", "--fov",
+            repr(float(view["fov"])), "--env", triple(view["env"]), *extra, "-o", out]
+
+
 def geocold_picture(args, view, spp: int):
     """geocold-cl's rendering of the view (for the same-picture check)."""
-    triple = lambda v: ",".join(repr(float(x)) for x in v)
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "ours.pfm")
-        command = [args.geocold, view["source"], "--quiet", "--device", args.device, "--spp", str(spp),
-                   "--res", f"{view['width']}x{view['height']}", "--max-depth", str(view["max_depth"]),
-                   "--rr-depth", str(view["rr_depth"]), f"--look-from={triple(view['look_from'])}",
-                   f"--look-at={triple(view['look_at'])}", f"--up={triple(view['up'])}", "--fov",
-                   repr(float(view["fov"])), "--env", triple(view["env"]), *thread_args(args.threads), "-o", out]
+        command = geocold_command(args.geocold, view, args.device, spp, out, thread_args(args.threads))
         run = subprocess.run(command, capture_output=True, text=True)
         if run.returncode != 0:
             fail(f"{' '.join(command)} exited {run.returncode}:\n{run.stderr}")

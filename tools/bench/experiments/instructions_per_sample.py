@@ -16,7 +16,7 @@ it waits would count too: the two totals' difference keeps what grows with the s
 Valgrind 3.19 does not decode AVX-512, so this runs on AVX2 machines (Dr.Jit at 8 lanes).
 
     tools/bench/experiments/instructions_per_sample.py --bench build/release/geocold-bench \
-        [--scene cornell] [--res 64] [--spp 16,48]
+        [--scene cornell] [--res 64] [--spp 8,72]
 """
 import argparse
 import json
@@ -65,14 +65,12 @@ def run(command, valgrind: bool) -> int:
 
 
 def ours_command(geocold: str, view, res: int, spp: int, out: str):
-    triple = lambda v: ",".join(repr(float(x)) for x in v)
+    from mitsuba_yardstick import geocold_command
+
     # Fixed passes of 8 samples: the camera packets of eight samples the renderer's own
     # planner uses on a CPU, whatever the (here much slower) pass times.
-    return [geocold, view["source"], "--quiet", "--device", "cpu", "--threads", "1", "--spp", str(spp),
-            "--samples-per-pass", "8", "--res", f"{res}x{res}", "--max-depth", str(view["max_depth"]),
-            "--rr-depth", str(view["rr_depth"]), f"--look-from={triple(view['look_from'])}",
-            f"--look-at={triple(view['look_at'])}", f"--up={triple(view['up'])}", "--fov", repr(float(view["fov"])),
-            "--env", triple(view["env"]), "-o", out]
+    return geocold_command(geocold, dict(view, width=res, height=res), "cpu", spp, out,
+                           ["--threads", "1", "--samples-per-pass", "8"])
 
 
 def mitsuba_command(view, res: int, spp: int, out: str):
@@ -102,7 +100,7 @@ def main() -> int:
     p.add_argument("--geocold", help="geocold-cl (default: beside --bench)")
     p.add_argument("--scene", default="cornell")
     p.add_argument("--res", type=int, default=64, help="square image side")
-    p.add_argument("--spp", default="16,48", help="the two sample counts, low,high")
+    p.add_argument("--spp", default="8,72", help="the two sample counts, low,high (far apart: Mitsuba's totals move by tens of millions between runs)")
     args = p.parse_args()
     geocold = args.geocold or os.path.join(os.path.dirname(args.bench), "geocold-cl")
     spps = [int(x) for x in args.spp.split(",")]
