@@ -9,9 +9,10 @@ software: each program renders the same view twice, with few and with many sampl
 pixel, under `valgrind --tool=cachegrind --cache-sim=no`; the difference of the two totals
 over the difference of the samples is the instructions per sample, start-up and kernel
 loading cancelled. Kernel caches are warmed first by the same runs, with and without
-Valgrind, so no compiler runs in a counted run. Each program gets one thread (PoCL: one worker; Dr.Jit: one
-thread), and Valgrind runs a process's threads one at a time, so a thread that spins while
-it waits would count too: the two totals' difference keeps what grows with the samples.
+Valgrind, so no compiler runs in a counted run. Each program gets one thread (PoCL: one
+worker; Dr.Jit: one thread), and Valgrind runs a process's threads one at a time, so a
+thread that spins while it waits would count too: the two totals' difference keeps what
+grows with the samples.
 
 Valgrind 3.19 does not decode AVX-512, so this runs on AVX2 machines (Dr.Jit at 8 lanes).
 
@@ -29,8 +30,10 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "reference"))
+from mitsuba_yardstick import geocold_command  # noqa: E402  (imports no Mitsuba itself)
 
-# One Mitsuba render in its own process (argv: view json, spp, out file), one thread.
+# One Mitsuba render in its own process, one thread. argv: the view (JSON), spp, a file to
+# write Dr.Jit's LLVM target to, and the folders mitsuba_yardstick.py imports from (JSON).
 MITSUBA_CHILD = r"""
 import json, sys
 import drjit as dr, mitsuba as mi
@@ -64,19 +67,15 @@ def run(command, valgrind: bool) -> int:
     return int(found.group(1).replace(",", ""))
 
 
-def ours_command(geocold: str, view, res: int, spp: int, out: str):
-    from mitsuba_yardstick import geocold_command
-
+def ours_command(geocold: str, view, spp: int, out: str):
     # Fixed passes of 8 samples: the camera packets of eight samples the renderer's own
     # planner uses on a CPU, whatever the (here much slower) pass times.
-    return geocold_command(geocold, dict(view, width=res, height=res), "cpu", spp, out,
-                           ["--threads", "1", "--samples-per-pass", "8"])
+    return geocold_command(geocold, view, "cpu", spp, out, ["--threads", "1", "--samples-per-pass", "8"])
 
 
-def mitsuba_command(view, res: int, spp: int, out: str):
-    small = dict(view, width=res, height=res)
+def mitsuba_command(view, spp: int, out: str):
     paths = [os.path.join(HERE, ".."), os.path.join(HERE, "..", "..", "reference")]
-    return [sys.executable, "-c", MITSUBA_CHILD, json.dumps(small), str(spp), out, json.dumps(paths)]
+    return [sys.executable, "-c", MITSUBA_CHILD, json.dumps(view), str(spp), out, json.dumps(paths)]
 
 
 def per_sample(name: str, make, res: int, spps, note=lambda: "") -> float:
@@ -100,7 +99,9 @@ def main() -> int:
     p.add_argument("--geocold", help="geocold-cl (default: beside --bench)")
     p.add_argument("--scene", default="cornell")
     p.add_argument("--res", type=int, default=64, help="square image side")
-    p.add_argument("--spp", default="8,72", help="the two sample counts, low,high (far apart: Mitsuba's totals move by tens of millions between runs)")
+    p.add_argument("--spp", default="8,72",
+                   help="the two sample counts, low,high (far apart: Mitsuba's totals move by tens of millions "
+                        "between runs)")
     args = p.parse_args()
     geocold = args.geocold or os.path.join(os.path.dirname(args.bench), "geocold-cl")
     spps = [int(x) for x in args.spp.split(",")]
@@ -110,16 +111,16 @@ def main() -> int:
                           "--no-first-image", "--no-path", "--no-packet-probe"], capture_output=True, text=True)
     if doc.returncode != 0:
         fail(f"geocold-bench exited {doc.returncode}:\n{doc.stderr}")
-    view = json.loads(doc.stdout)["scenes"][args.scene]["view"]
+    view = dict(json.loads(doc.stdout)["scenes"][args.scene]["view"], width=args.res, height=args.res)
     print(f"{args.scene} at {args.res}x{args.res}, depth {view['max_depth']}, one thread each, "
           f"Valgrind instruction counts at {spps[0]} and {spps[1]} spp")
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out")
-        ours = per_sample("geocold-cl (PoCL)", lambda spp: ours_command(geocold, view, args.res, spp, out + ".pfm"),
+        ours = per_sample("geocold-cl (PoCL)", lambda spp: ours_command(geocold, view, spp, out + ".pfm"),
                           args.res, spps)
         # The child writes Dr.Jit's LLVM target (as seen under Valgrind in the counted runs).
         target = lambda: f" (Dr.Jit target under Valgrind: {open(out + '.txt').read()})"
-        theirs = per_sample("Mitsuba llvm_ad_rgb", lambda spp: mitsuba_command(view, args.res, spp, out + ".txt"),
+        theirs = per_sample("Mitsuba llvm_ad_rgb", lambda spp: mitsuba_command(view, spp, out + ".txt"),
                             args.res, spps, target)
     print(f"ours / Mitsuba: {ours / theirs:.2f}x the instructions per sample")
     return 0
