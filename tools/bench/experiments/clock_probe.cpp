@@ -181,6 +181,16 @@ const Kernel* kernel_named(const std::vector<Kernel>& kernels, const std::string
     return nullptr;
 }
 
+// Runs `kernel` on the calling thread for as long as `keep_going()` says, counting nothing:
+// the load that companions and `load` mode put on other CPUs.
+template <class KeepGoing>
+void run_while(const Kernel& kernel, KeepGoing keep_going)
+{
+    std::uint64_t sink = 0, blocks = 0;
+    while (keep_going()) sink += kernel.run(64, blocks += 64);
+    g_sink.fetch_add(sink);
+}
+
 // Blocks per second of `kernel` on CPU 0 for `seconds`, while `companion_cpu` (if >= 0) runs
 // the same kernel for as long.
 double rate_on_cpu0(const Kernel& kernel, int companion_cpu, double seconds)
@@ -190,9 +200,7 @@ double rate_on_cpu0(const Kernel& kernel, int companion_cpu, double seconds)
     if (companion_cpu >= 0)
         companion = std::thread([&] {
             pin_to_cpu(companion_cpu);
-            std::uint64_t sink = 0, blocks = 0;
-            while (!stop.load()) sink += kernel.run(64, blocks += 64);
-            g_sink.fetch_add(sink);
+            run_while(kernel, [&] { return !stop.load(); });
         });
     double rate = 0.0;
     std::thread measured([&] {
@@ -236,9 +244,7 @@ int load_mode(const std::vector<Kernel>& kernels, const std::string& kind, int f
     for (int cpu = first; cpu <= last; ++cpu)
         pool.emplace_back([&, cpu] {
             if (!pin_to_cpu(cpu)) std::fprintf(stderr, "clock_probe: cannot pin to CPU %d\n", cpu);
-            std::uint64_t sink = 0, blocks = 0;
-            while (Clock::now() < end) sink += kernel->run(64, blocks += 64);
-            g_sink.fetch_add(sink);
+            run_while(*kernel, [&] { return Clock::now() < end; });
         });
     for (std::thread& th : pool) th.join();
     return 0;
