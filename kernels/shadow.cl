@@ -11,8 +11,10 @@ __kernel void shadow(const GcRenderParams params,
                      __global GcPathState* paths,
                      __global const uint* counters)
 {
-    const uint q = get_global_id(0);
-    if (q >= counters[GC_COUNTER_SHADOW] || q >= gc_pass_paths(params)) return;
-    const GcShadowRay s = shadow_rays[q];
-    if (!gc_trace_any(GC_BVH_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
+    const uint count = min(counters[GC_COUNTER_SHADOW], gc_pass_paths(params));
+    /* Grid-stride, as in extend.cl. */
+    for (uint q = get_global_id(0); q < count; q += get_global_size(0)) {
+        const GcShadowRay s = shadow_rays[q];
+        if (!gc_trace_any(GC_BVH_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
+    }
 }

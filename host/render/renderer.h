@@ -71,6 +71,7 @@ private:
     std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
     std::uint32_t m_samples = 0;
     PassPlanner m_planner;              // samples per pass of the megakernel; pass times of any form
+    std::uint32_t m_wavefront_grid = 0; // most work-items per wavefront launch (0: one per queue entry)
 
     cl::Buffer<glm::vec4> m_film;
     cl::Buffer<glm::vec4> m_film_squares;
@@ -98,6 +99,10 @@ private:
 // wavefront stages (wavefront.cl) on GPUs; both give the same bits on one device.
 bool path_megakernel_for(const cl::DeviceInfo& device);
 const char* integrator_program(IntegratorKind kind, bool megakernel);
+
+// Work-items for a wavefront launch over `entries` queue entries when a launch may hold at
+// most `grid` (0: no cap); the kernels loop over the rest.
+std::uint32_t wavefront_launch_size(std::uint32_t entries, std::uint32_t grid);
 
 // Default paths in flight per pass: enough to fill a GPU, small enough for a CPU's caches.
 std::uint32_t default_wavefront_size(const cl::DeviceInfo& device);

@@ -15,7 +15,8 @@
  * Every work-item of the group must call gc_queue_reserve2 (it has barriers): kernels keep
  * their idle work-items alive with push = false instead of returning early. The local
  * counters must be declared at kernel scope (OpenCL C) and passed in; call it once per
- * kernel (a second call's reset of the counters could overtake the first call's last reads).
+ * kernel, or put a barrier between calls (a second call's reset of the counters could
+ * overtake the first call's last reads; shade.cl's loop does this).
  */
 #ifndef GC_QUEUE_H
 #define GC_QUEUE_H

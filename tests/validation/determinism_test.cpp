@@ -129,6 +129,36 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     }
 }
 
+TEST_F(DeterminismTest, WavefrontLaunchesNarrowerThanTheirQueuesGiveTheSameBits)
+{
+    // After the first bounce, GPUs launch the wavefront's extend, shade and shadow kernels with
+    // fewer work-items than the queues may hold, and each work-item loops over its queue in
+    // steps of the launch's width (renderer.cpp, wavefront_grid). Forced here down to one per
+    // compute unit (a work-group or a few: far below the 3 x 1200 paths of a pass on any
+    // device), every path must still be traced and shaded exactly once: the films equal those
+    // of one work-item per queue entry.
+    const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", "wavefront");
+    const Scene scene = load_cornell("CornellBox-Sphere.obj");
+    const Camera camera = validation::cornell_camera();
+    RenderSettings s = small_path_render(6, 7);
+    s.rr_depth = 2;
+    s.wavefront_size = 4000;
+    validation::Rendered rendered[2];
+    const char* grids[2] = {"0", "1"};
+    for (int i = 0; i < 2; ++i) {
+        const cl::test::ScopedEnv grid("GEOCOLD_WAVEFRONT_GRID", grids[i]);
+        rendered[i] = validation::render(*context, scene, camera, s);
+    }
+    const bool mean_same = bit_identical(rendered[0].mean, rendered[1].mean);
+    const bool variance_same = bit_identical(rendered[0].variance, rendered[1].variance);
+    std::printf("one work-item per entry against launches of %u (rounded up to whole work-groups) after the first "
+                "bounce: mean films %s, variance films %s\n",
+                wavefront_launch_size(3600, context->device().compute_units), mean_same ? "identical" : "DIFFER",
+                variance_same ? "identical" : "DIFFER");
+    EXPECT_TRUE(mean_same);
+    EXPECT_TRUE(variance_same);
+}
+
 TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)
 {
     // The CPU form with an image larger than one launch: each launch's work-items run their
