@@ -104,7 +104,14 @@ const char* integrator_program(IntegratorKind kind, bool megakernel);
 // most `grid` (0: no cap); the kernels loop over the rest.
 std::uint32_t wavefront_launch_size(std::uint32_t entries, std::uint32_t grid);
 
-// Default paths in flight per pass: enough to fill a GPU, small enough for a CPU's caches.
+// Default paths in flight per pass: as many as a GPU's memory allows up to 2^24 (its passes'
+// fixed costs shrink with each path added), 2^16 on CPUs (small enough for their caches).
+inline constexpr std::uint32_t kGpuWavefrontPaths = 1u << 24;
+inline constexpr std::uint32_t kCpuWavefrontPaths = 1u << 16;
+// Device bytes a wavefront path slot takes: ray, hit, path state, two queue entries, shadow ray.
+inline constexpr std::uint64_t kWavefrontBytesPerPath = sizeof(dev::GcRay) + sizeof(dev::GcHit) +
+                                                        sizeof(dev::GcPathState) + 2 * sizeof(std::uint32_t) +
+                                                        sizeof(dev::GcShadowRay);
 std::uint32_t default_wavefront_size(const cl::DeviceInfo& device);
 
 }  // namespace gc
