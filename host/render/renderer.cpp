@@ -42,9 +42,12 @@ std::size_t megakernel_local_size(const cl::Context& context)
 // read the counter and left. H200, path samples/s against one work-item per slot, 2 rounds
 // (Cornell box / dragon / 5.2M triangles): 4096 per unit 1.01x / 1.06x / 1.01x; 2048 1.00x /
 // 1.07x / 0.99x; 8192 1.00x / 0.99x / 1.01x; 4096 on the first bounce too 1.00x / 1.03x /
-// 0.98x (a full queue looped over by fewer work-items balances worse). 0: one work-item per
-// slot. GEOCOLD_WAVEFRONT_GRID overrides it on any device (A/B runs; tests use 1 to run the
-// loops on every device).
+// 0.98x (a full queue looped over by fewer work-items balances worse). With 2^24 paths per
+// pass (one run): 1.03x / 1.17x / 0.915x, the large scene's queues staying long; sizing each
+// launch from the last batch's queue lengths should serve both (tools/bench/experiments/
+// wavefront-predict.patch, not yet measured). 0: one work-item per slot.
+// GEOCOLD_WAVEFRONT_GRID overrides it on any device (A/B runs; tests use 1 to run the loops on
+// every device).
 constexpr std::uint32_t kGpuWavefrontItemsPerUnit = 4096;
 
 std::uint32_t wavefront_grid(const cl::DeviceInfo& device)
@@ -227,11 +230,11 @@ void Renderer::run_path_batch()
     // On CPUs (PoCL) the host reads the queue counters back after each shade pass and launches
     // the next stages over the live paths only, stopping once none is left: an early-returning
     // work-item still costs PoCL a trip through its work-group loop, and reading four uints
-    // from host memory is nearly free there. GPUs keep launching over the full capacity
-    // without a read-back (the pbrt-v4 scheme): an idle work-item is cheap there, and a
-    // blocking read per bounce would stall the queue. Either way every slot gets the same
-    // work, so the image is the same bits. GEOCOLD_WAVEFRONT_SYNC=0/1 overrides the choice
-    // (benchmarking, like GEOCOLD_LOCAL_SIZE).
+    // from host memory is nearly free there. GPUs keep launching without a read-back (the
+    // pbrt-v4 scheme): over the full capacity on the first bounce, capped after it
+    // (wavefront_grid), since a blocking read per bounce would stall the queue (0.93x on an
+    // H200). Either way every slot gets the same work, so the image is the same bits.
+    // GEOCOLD_WAVEFRONT_SYNC=0/1 overrides the choice (benchmarking, like GEOCOLD_LOCAL_SIZE).
     bool sync_counts = !m_context.device().is_gpu;
     if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) sync_counts = env[0] != '0';
     std::uint32_t live = n;
