@@ -35,12 +35,13 @@ fi
 # Leave room under the device tool's 10-minute command limit for the A/B runs and transfers.
 status=0
 timeout "${GEOCOLD_BENCH_TIMEOUT:-420}" ./build/bare/geocold-bench --json "$@" > "$out/bench.json" 2>> "$out/bench.txt" || status=$?
-# A/B of the wavefront's counter read-back (on by default on CPUs, off on GPUs): path tracing
-# only, both settings on every device, so the default can be chosen per device from data.
+# A/B of the wavefront's scheduling knobs, path tracing only, on every device, so the defaults
+# can be chosen per device from data: the counter read-back (on by default on CPUs, off on
+# GPUs) and the launch cap after the first bounce (GPUs; GEOCOLD_WAVEFRONT_GRID=0 lifts it).
 if [ "${GEOCOLD_BENCH_AB:-1}" = 1 ]; then
-    for sync in 0 1; do
-        echo "== A/B: GEOCOLD_WAVEFRONT_SYNC=$sync (path tracing only)" >> "$out/bench.txt"
-        GEOCOLD_WAVEFRONT_SYNC=$sync timeout 60 ./build/bare/geocold-bench --scene cornell,dragon --no-rays \
+    for setting in GEOCOLD_WAVEFRONT_SYNC=0 GEOCOLD_WAVEFRONT_SYNC=1 GEOCOLD_WAVEFRONT_GRID=0; do
+        echo "== A/B: $setting (path tracing only)" >> "$out/bench.txt"
+        env "$setting" timeout 90 ./build/bare/geocold-bench --scene cornell,dragon,large --no-rays \
             --no-first-image --repeats 3 2>&1 | grep -E "path|error" >> "$out/bench.txt" || true
     done
 fi
