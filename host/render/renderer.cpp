@@ -86,9 +86,9 @@ std::uint32_t wavefront_launch_size(std::uint32_t entries, std::uint32_t grid)
 std::uint32_t default_wavefront_size(const cl::DeviceInfo& device)
 {
     if (!device.is_gpu) return kCpuWavefrontPaths;
-    // A GPU pass pays for its launches' tails, where a few long paths hold the device while
-    // the rest of it waits, and for the round trip at its end: the more paths share them, the
-    // less each pays. H200, path samples/s against 2^20 paths (2 rounds, Cornell box 512x512 /
+    // A GPU pass pays, most likely, for its launches' tails, where a few long paths hold the
+    // device while the rest of it waits, and for the round trip at its end: the more paths
+    // share them, the less each pays. H200, path samples/s against 2^20 paths (2 rounds, Cornell box 512x512 /
     // dragon 320x240 / 5.2M triangles 512x512): 2^22 1.16x / 2.22x / 1.68x, 2^23 1.20x /
     // 2.38x / 1.89x, 2^24 1.22x / 2.37x / 1.99x (the dragon's 64 samples fit one pass from
     // 2^23). At 168 bytes a path, 2^24 take 2.8 GB: capped at an eighth of the device's memory
