@@ -52,10 +52,11 @@ constexpr std::uint32_t kGpuWavefrontItemsPerUnit = 4096;
 
 std::uint32_t wavefront_grid(const cl::DeviceInfo& device)
 {
+    const std::uint32_t units = std::max<std::uint32_t>(device.compute_units, 1u);
     if (const auto per_unit = env_choice("GEOCOLD_WAVEFRONT_GRID", {"0", "1", "64", "256", "512", "1024", "2048", "4096", "8192"},
                                          "0, 1, 64, 256, 512, 1024, 2048, 4096 or 8192"))
-        return static_cast<std::uint32_t>(std::stoul(*per_unit)) * std::max<std::uint32_t>(device.compute_units, 1u);
-    return device.is_gpu ? kGpuWavefrontItemsPerUnit * std::max<std::uint32_t>(device.compute_units, 1u) : 0u;
+        return static_cast<std::uint32_t>(std::stoul(*per_unit)) * units;
+    return device.is_gpu ? kGpuWavefrontItemsPerUnit * units : 0u;
 }
 
 }  // namespace
