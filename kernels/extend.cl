@@ -11,8 +11,8 @@ __kernel void extend(const GcRenderParams params,
                      const uint queue_counter)
 {
     const uint count = min(counters[queue_counter], gc_pass_paths(params));
-    /* Grid-stride: a GPU launch may hold fewer work-items than the queue (renderer.cpp,
-     * wavefront_launch_size); where the host launches one per entry this runs once. */
+    /* Grid-stride: a GPU launch may hold fewer work-items than the queue
+     * (wavefront_launches.h); where the host launches one per entry this runs once. */
     for (uint q = get_global_id(0); q < count; q += get_global_size(0)) {
         const uint slot = ray_queue[q];
         hits[slot] = gc_trace_closest(GC_BVH_ARGS, rays[slot]);

@@ -4,7 +4,7 @@
  * only moves its result into the wavefront's queues, one global atomic per work-group and
  * queue (gc_queue.h). Work-items past the queue's end stay for the group's barriers.
  * A launch may hold fewer work-items than the queue: each group then takes further steps
- * of the whole launch's width (renderer.cpp, wavefront_launch_size).
+ * of the whole launch's width (wavefront_launches.h).
  */
 #include "gc_path_vertex.h"
 #include "gc_queue.h"

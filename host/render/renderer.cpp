@@ -23,6 +23,14 @@ void zero_counters(const cl::Context& context, const cl::Buffer<std::uint32_t>& 
                first * sizeof zero, count * sizeof zero, 0, nullptr, nullptr);
 }
 
+// Copies one queue counter into a slot of `lengths`, on the device (no host wait).
+void copy_counter(const cl::Context& context, const cl::Buffer<std::uint32_t>& counters, std::uint32_t counter,
+                  const cl::Buffer<std::uint32_t>& lengths, std::uint32_t slot)
+{
+    GC_CL_WHAT("copying a queue length", clEnqueueCopyBuffer, context.queue(), counters.mem(), lengths.mem(),
+               counter * sizeof(std::uint32_t), slot * sizeof(std::uint32_t), sizeof(std::uint32_t), 0, nullptr, nullptr);
+}
+
 // The megakernel's work-group size. On CPUs, 1: PoCL gives every work-item of a group its own
 // copy of the private arrays (traversal stack, path state), so a group of 128 spreads them
 // over ~200 KB; one long-running item per group keeps them in L1. H200 box, PoCL 5 on 16
@@ -35,28 +43,31 @@ std::size_t megakernel_local_size(const cl::Context& context)
     return 1;
 }
 
-// Work-items per compute unit in a GPU's wavefront launches after the first bounce (extend,
-// shade, shadow), which loop over their queue in steps of the launch's width. The host does
-// not read the queues' lengths back on GPUs (run_path_batch), so every bounce launches for the
-// whole wavefront; with one work-item per path slot, most of a later bounce's work-items only
-// read the counter and left. H200, path samples/s against one work-item per slot, 2 rounds
-// (Cornell box / dragon / 5.2M triangles): 4096 per unit 1.01x / 1.06x / 1.01x; 2048 1.00x /
-// 1.07x / 0.99x; 8192 1.00x / 0.99x / 1.01x; 4096 on the first bounce too 1.00x / 1.03x /
-// 0.98x (a full queue looped over by fewer work-items balances worse). With 2^24 paths per
-// pass (one run): 1.03x / 1.17x / 0.915x, the large scene's queues staying long; sizing each
-// launch from the last batch's queue lengths should serve both (tools/bench/experiments/
-// wavefront-predict.patch, not yet measured). 0: one work-item per slot.
-// GEOCOLD_WAVEFRONT_GRID overrides it on any device (A/B runs; tests use 1 to run the loops on
-// every device).
-constexpr std::uint32_t kGpuWavefrontItemsPerUnit = 4096;
+// Work-items per compute unit in a GPU's wavefront launches after the first bounce, for the
+// first batch (later ones are sized from the batch before: WavefrontLaunches). H200, path
+// samples/s against one work-item per queue entry, 2^20 paths, 2 rounds (Cornell box / dragon /
+// 5.2M triangles): 4096 per unit 1.01x / 1.06x / 1.01x; 2048 1.00x / 1.07x / 0.99x; 8192 1.00x /
+// 0.99x / 1.01x.
+constexpr std::uint32_t kGpuFirstBatchItemsPerUnit = 4096;
+// The least predicted width per compute unit: a work-group or so, so that a queue that grew
+// since the last batch still spreads over the whole device.
+constexpr std::uint32_t kLeastPredictedItemsPerUnit = 64;
 
-std::uint32_t wavefront_grid(const cl::DeviceInfo& device)
+// GPUs size each launch after the first bounce from the last batch's queue lengths. H200, 2^24
+// paths per pass, path samples/s, 3 interleaved rounds (Cornell box / dragon / 5.2M triangles):
+// against 4096 work-items per unit on every batch 1.024x / 1.018x / 1.114x, against one per
+// queue entry 1.061x / 1.201x / 1.026x. GEOCOLD_WAVEFRONT_GRID=N fixes N per compute unit
+// instead, on any device (A/B runs; tests use 1 to run the kernels' loops everywhere; 0: one
+// work-item per entry). CPUs read the lengths back (run_path_batch), so one per entry is exact.
+WavefrontLaunches wavefront_launches(const cl::DeviceInfo& device, std::uint32_t max_depth)
 {
     const std::uint32_t units = std::max<std::uint32_t>(device.compute_units, 1u);
+    std::optional<std::uint32_t> fixed;
     if (const auto per_unit = env_choice("GEOCOLD_WAVEFRONT_GRID", {"0", "1", "64", "256", "512", "1024", "2048", "4096", "8192"},
                                          "0, 1, 64, 256, 512, 1024, 2048, 4096 or 8192"))
-        return static_cast<std::uint32_t>(std::stoul(*per_unit)) * units;
-    return device.is_gpu ? kGpuWavefrontItemsPerUnit * units : 0u;
+        fixed = static_cast<std::uint32_t>(std::stoul(*per_unit)) * units;
+    const std::uint32_t first = device.is_gpu ? kGpuFirstBatchItemsPerUnit * units : 0u;
+    return WavefrontLaunches(max_depth, fixed, first, kLeastPredictedItemsPerUnit * units);
 }
 
 }  // namespace
@@ -77,11 +88,6 @@ const char* integrator_program(IntegratorKind kind, bool megakernel)
     case IntegratorKind::Whitted: return "whitted.cl";
     }
     return "aov.cl";
-}
-
-std::uint32_t wavefront_launch_size(std::uint32_t entries, std::uint32_t grid)
-{
-    return grid == 0 ? entries : std::min(entries, grid);
 }
 
 std::uint32_t default_wavefront_size(const cl::DeviceInfo& device)
@@ -111,8 +117,19 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
       m_program(context, integrator_program(settings.integrator, m_megakernel),
                 program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features)),
       m_planner(settings.samples_per_pass),
-      m_wavefront_grid(wavefront_grid(context.device()))
+      m_launches(wavefront_launches(context.device(), settings.max_depth))
 {
+    // On CPUs (PoCL) the host reads the queue counters back after each shade pass and launches
+    // the next stages over the live paths only, stopping once none is left: an early-returning
+    // work-item still costs PoCL a trip through its work-group loop, and reading four uints
+    // from host memory is nearly free there. GPUs keep launching without a read-back (the
+    // pbrt-v4 scheme), since a blocking read per bounce would stall the queue (0.93x on an
+    // H200), and size the launches from the last batch instead (m_launches). Either way every
+    // slot gets the same work, so the image is the same bits. GEOCOLD_WAVEFRONT_SYNC=0/1
+    // overrides the choice (benchmarking, like GEOCOLD_LOCAL_SIZE).
+    m_sync_counts = !context.device().is_gpu;
+    if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) m_sync_counts = env[0] != '0';
+
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());
     m_batch = std::min(pixels, wavefront);
@@ -148,6 +165,9 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
         m_queue_b = cl::Buffer<std::uint32_t>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "ray queue B");
         m_shadow_rays = cl::Buffer<dev::GcShadowRay>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "shadow rays");
         m_counters = cl::Buffer<std::uint32_t>::create(context, GC_COUNTER_COUNT, CL_MEM_READ_WRITE, "queue counters");
+        m_queue_lengths = cl::Buffer<std::uint32_t>::create(context, 2 * std::size_t{std::max(m_params.max_depth, 1u)},
+                                                            CL_MEM_READ_WRITE, "queue lengths per depth");
+        m_last_queue_lengths.assign(m_queue_lengths.count(), 0u);
         m_generate = m_program.kernel("generate");
         m_extend = m_program.kernel("extend");
         m_shade = m_program.kernel("shade");
@@ -194,6 +214,13 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
         else run_path_batch();
     }
     m_context.finish();
+    if (m_lengths_on_device) {
+        // The queues' lengths of the pass's last batch, copied on the device as it ran: reading
+        // them once the queue is drained costs one small transfer a pass, and no stall.
+        m_queue_lengths.read(std::span<std::uint32_t>(m_last_queue_lengths));
+        m_launches.record(m_last_queue_lengths, m_last_queue_paths);
+        m_lengths_on_device = false;
+    }
     m_planner.record(samples, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     m_samples += samples;
     return samples;
@@ -228,23 +255,17 @@ void Renderer::run_path_batch()
     m_generate.set_args(m_params, m_rays, m_paths, m_queue_a, m_counters);
     m_generate.launch(m_context, n, 0, "camera rays");
 
-    // On CPUs (PoCL) the host reads the queue counters back after each shade pass and launches
-    // the next stages over the live paths only, stopping once none is left: an early-returning
-    // work-item still costs PoCL a trip through its work-group loop, and reading four uints
-    // from host memory is nearly free there. GPUs keep launching without a read-back (the
-    // pbrt-v4 scheme): over the full capacity on the first bounce, capped after it
-    // (wavefront_grid), since a blocking read per bounce would stall the queue (0.93x on an
-    // H200). Either way every slot gets the same work, so the image is the same bits.
-    // GEOCOLD_WAVEFRONT_SYNC=0/1 overrides the choice (benchmarking, like GEOCOLD_LOCAL_SIZE).
-    bool sync_counts = !m_context.device().is_gpu;
-    if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) sync_counts = env[0] != '0';
     std::uint32_t live = n;
+    // Each depth's queue lengths: read back on CPUs as the batch runs; on GPUs copied aside on
+    // the device and read after the pass (render_samples), to size the next batch's launches.
+    // Without read-backs every depth runs, so the batch leaves a length for each of them.
+    m_last_queue_lengths.assign(2 * std::size_t{m_params.max_depth}, 0u);
+    m_last_queue_paths = n;
+    m_lengths_on_device = !m_sync_counts;
     m_shadow.set_args(m_params, m_scene.bvh_args(), m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;
     for (std::uint32_t depth = 0; depth < m_params.max_depth && live > 0; ++depth) {
-        // The first bounce's queues are full (every camera ray), and there one work-item per
-        // entry balances best; later ones shrink by an amount the host does not wait to read.
-        const std::uint32_t grid = depth == 0 ? 0u : m_wavefront_grid;
+        const std::uint32_t ray_width = m_launches.ray_width(depth, n);
         const cl::Buffer<std::uint32_t>& queue_in = a_is_input ? m_queue_a : m_queue_b;
         const cl::Buffer<std::uint32_t>& queue_out = a_is_input ? m_queue_b : m_queue_a;
         const std::uint32_t counter_in = a_is_input ? GC_COUNTER_RAYS_A : GC_COUNTER_RAYS_B;
@@ -253,18 +274,23 @@ void Renderer::run_path_batch()
         zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
 
         m_extend.set_args(m_params, m_scene.bvh_args(), m_rays, m_hits, queue_in, m_counters, counter_in);
-        m_extend.launch(m_context, wavefront_launch_size(live, grid), 0, "closest-hit rays");
+        m_extend.launch(m_context, wavefront_launch_size(live, ray_width), 0, "closest-hit rays");
         m_shade.set_args(m_params, m_scene.shade_args(), m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays,
                          m_counters, counter_in, counter_out);
-        m_shade.launch(m_context, wavefront_launch_size(live, grid), 0, "shading");
+        m_shade.launch(m_context, wavefront_launch_size(live, ray_width), 0, "shading");
         std::uint32_t shadows = n;
-        if (sync_counts) {
+        if (m_sync_counts) {
             std::uint32_t counts[GC_COUNTER_COUNT];
             m_counters.read(counts);
             shadows = counts[GC_COUNTER_SHADOW];
             live = counts[counter_out];
+            m_last_queue_lengths[2 * depth] = live;
+            m_last_queue_lengths[2 * depth + 1] = shadows;
+        } else {
+            copy_counter(m_context, m_counters, counter_out, m_queue_lengths, 2 * depth);
+            copy_counter(m_context, m_counters, GC_COUNTER_SHADOW, m_queue_lengths, 2 * depth + 1);
         }
-        m_shadow.launch(m_context, wavefront_launch_size(shadows, grid), 0, "shadow rays");
+        m_shadow.launch(m_context, wavefront_launch_size(shadows, m_launches.shadow_width(depth, n)), 0, "shadow rays");
         a_is_input = !a_is_input;
     }
     m_accumulate.set_args(m_params, m_paths, m_film, m_film_squares);

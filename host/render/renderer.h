@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -17,6 +19,7 @@
 #include "host/render/device_scene.h"
 #include "host/render/pass_planner.h"
 #include "host/render/render_settings.h"
+#include "host/render/wavefront_launches.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -46,6 +49,10 @@ public:
     bool uses_megakernel() const { return m_megakernel; }
     // Pixels one megakernel work-item rendered in the last pass (gc_packet_lanes.h); 1 elsewhere.
     std::uint32_t pixels_per_item() const { return m_params.pixels_per_item; }
+    // Wavefront path integrator: the queue lengths of the last pass's last batch, for each depth
+    // the rays it queued for the next one and its shadow rays (2 x max_depth values; zeros
+    // before the first pass and past the depth where every path ended).
+    std::span<const std::uint32_t> last_queue_lengths() const { return m_last_queue_lengths; }
     const cl::Program& program() const { return m_program; }
     const DeviceScene& device_scene() const { return m_scene; }
 
@@ -71,7 +78,11 @@ private:
     std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
     std::uint32_t m_samples = 0;
     PassPlanner m_planner;              // samples per pass of the megakernel; pass times of any form
-    std::uint32_t m_wavefront_grid = 0; // most work-items per wavefront launch (0: one per queue entry)
+    bool m_sync_counts = false;         // wavefront: the host reads each bounce's queue lengths back (CPUs)
+    WavefrontLaunches m_launches;       // wavefront: launch widths where it does not
+    std::vector<std::uint32_t> m_last_queue_lengths;  // wavefront: see last_queue_lengths()
+    std::uint32_t m_last_queue_paths = 0;
+    bool m_lengths_on_device = false;   // m_queue_lengths holds lengths not yet read
 
     cl::Buffer<glm::vec4> m_film;
     cl::Buffer<glm::vec4> m_film_squares;
@@ -83,6 +94,7 @@ private:
     cl::Buffer<std::uint32_t> m_queue_b;
     cl::Buffer<dev::GcShadowRay> m_shadow_rays;
     cl::Buffer<std::uint32_t> m_counters;
+    cl::Buffer<std::uint32_t> m_queue_lengths;  // per depth: rays queued for the next, shadow rays
 
     cl::Kernel m_aov;
     cl::Kernel m_generate;
@@ -99,10 +111,6 @@ private:
 // wavefront stages (wavefront.cl) on GPUs; both give the same bits on one device.
 bool path_megakernel_for(const cl::DeviceInfo& device);
 const char* integrator_program(IntegratorKind kind, bool megakernel);
-
-// Work-items for a wavefront launch over `entries` queue entries when a launch may hold at
-// most `grid` (0: no cap); the kernels loop over the rest.
-std::uint32_t wavefront_launch_size(std::uint32_t entries, std::uint32_t grid);
 
 // Default paths in flight per pass: as many as a GPU's memory allows up to 2^24 (its passes'
 // fixed costs shrink with each path added), 2^16 on CPUs (small enough for their caches).

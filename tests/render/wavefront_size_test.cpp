@@ -1,8 +1,10 @@
-// host/render/renderer: how many paths a pass holds by default, and how many work-items a
-// wavefront launch gets (the device side of both is in tests/validation/determinism_test.cpp).
+// host/render/renderer and wavefront_launches: how many paths a pass holds by default, and how
+// many work-items a wavefront launch gets (the device side of both is in tests/validation/determinism_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <optional>
+#include <vector>
 
 #include "host/render/renderer.h"
 
@@ -50,11 +52,75 @@ TEST(WavefrontSize, CpusKeepSmallPasses)
     EXPECT_EQ(default_wavefront_size(cpu), kCpuWavefrontPaths);
 }
 
-TEST(WavefrontSize, LaunchesAreCappedOnlyWhenAGridIsSet)
+TEST(WavefrontSize, LaunchesAreCappedOnlyWhenAWidthIsSet)
 {
     EXPECT_EQ(wavefront_launch_size(1000, 0), 1000u);
     EXPECT_EQ(wavefront_launch_size(1000, 256), 256u);
     EXPECT_EQ(wavefront_launch_size(100, 256), 100u);
+}
+
+// Queue lengths of a batch of 10000 paths over 3 depths: rays queued for the next depth, then
+// shadow rays, per depth.
+constexpr std::uint32_t kRecordedPaths = 10000;
+const std::vector<std::uint32_t> kRecordedLengths = {8000, 9000, 5000, 7000, 2000, 4000};
+
+TEST(WavefrontLaunches, FirstBatchUsesTheFirstWidthAfterTheFirstBounce)
+{
+    const WavefrontLaunches launches(3, std::nullopt, 4096, 64);
+    EXPECT_TRUE(launches.predicts());
+    EXPECT_FALSE(launches.has_history());
+    EXPECT_EQ(launches.ray_width(0, kRecordedPaths), 0u);  // one per entry: the full first queue
+    EXPECT_EQ(launches.shadow_width(0, kRecordedPaths), 0u);
+    EXPECT_EQ(launches.ray_width(1, kRecordedPaths), 4096u);
+    EXPECT_EQ(launches.shadow_width(2, kRecordedPaths), 4096u);
+}
+
+TEST(WavefrontLaunches, LaterBatchesAreSizedFromTheLastOnesLengthsAtTheSameDepth)
+{
+    WavefrontLaunches launches(3, std::nullopt, 4096, 64);
+    launches.record(kRecordedLengths, kRecordedPaths);
+    ASSERT_TRUE(launches.has_history());
+    // Extend and shade at depth d see the rays depth d - 1 queued; a sixteenth more, plus 64.
+    EXPECT_EQ(launches.ray_width(0, kRecordedPaths), 0u);
+    EXPECT_EQ(launches.ray_width(1, kRecordedPaths), 8000u + 500u + 64u);
+    EXPECT_EQ(launches.ray_width(2, kRecordedPaths), 5000u + 312u + 64u);
+    EXPECT_EQ(launches.shadow_width(0, kRecordedPaths), 9000u + 562u + 64u);
+    EXPECT_EQ(launches.shadow_width(2, kRecordedPaths), 4000u + 250u + 64u);
+    // Scaled to a batch of half the paths; never wider than the batch.
+    EXPECT_EQ(launches.ray_width(2, kRecordedPaths / 2), 2500u + 156u + 64u);
+    EXPECT_EQ(launches.shadow_width(0, 100), 100u);
+    std::printf("depth 1 of 10000 paths after a batch that queued 8000: %u work-items\n", launches.ray_width(1, 10000));
+}
+
+TEST(WavefrontLaunches, EmptyQueuesStillGetTheLeastWidth)
+{
+    // A depth no path reached last time may be reached now: the kernels loop over whatever
+    // the queue holds, so a small launch is enough, but never 0 (one per entry).
+    WavefrontLaunches launches(3, std::nullopt, 4096, 64);
+    launches.record(std::vector<std::uint32_t>(6, 0u), kRecordedPaths);
+    EXPECT_EQ(launches.ray_width(2, kRecordedPaths), 64u);
+    EXPECT_EQ(launches.shadow_width(1, 10), 10u);
+}
+
+TEST(WavefrontLaunches, AFixedWidthIgnoresRecordedBatches)
+{
+    WavefrontLaunches launches(3, 132u, 4096, 64);
+    EXPECT_FALSE(launches.predicts());
+    launches.record(kRecordedLengths, kRecordedPaths);
+    EXPECT_EQ(launches.ray_width(0, kRecordedPaths), 0u);
+    EXPECT_EQ(launches.ray_width(1, kRecordedPaths), 132u);
+    EXPECT_EQ(launches.shadow_width(0, kRecordedPaths), 0u);
+    EXPECT_EQ(launches.shadow_width(2, kRecordedPaths), 132u);
+}
+
+TEST(WavefrontLaunches, LengthsOfTheWrongCountAreIgnored)
+{
+    WavefrontLaunches launches(4, std::nullopt, 4096, 64);
+    launches.record(kRecordedLengths, kRecordedPaths);  // 3 depths' worth, 4 expected
+    EXPECT_FALSE(launches.has_history());
+    launches.record(std::vector<std::uint32_t>(8, 1u), 0);  // from no paths
+    EXPECT_FALSE(launches.has_history());
+    EXPECT_EQ(launches.ray_width(3, kRecordedPaths), 4096u);
 }
 
 }  // namespace

@@ -133,7 +133,7 @@ TEST_F(DeterminismTest, WavefrontLaunchesNarrowerThanTheirQueuesGiveTheSameBits)
 {
     // After the first bounce, GPUs launch the wavefront's extend, shade and shadow kernels with
     // fewer work-items than the queues may hold, and each work-item loops over its queue in
-    // steps of the launch's width (renderer.cpp, wavefront_grid). Forced here down to one per
+    // steps of the launch's width (wavefront_launches.h). Forced here down to one per
     // compute unit (a work-group or a few: far below the 3 x 1200 paths of a pass on any
     // device), every path must still be traced and shaded exactly once: the films equal those
     // of one work-item per queue entry.
@@ -157,6 +157,38 @@ TEST_F(DeterminismTest, WavefrontLaunchesNarrowerThanTheirQueuesGiveTheSameBits)
                 variance_same ? "identical" : "DIFFER");
     EXPECT_TRUE(mean_same);
     EXPECT_TRUE(variance_same);
+}
+
+TEST_F(DeterminismTest, QueueLengthsCopiedOnTheDeviceEqualThoseReadBack)
+{
+    // The lengths that size the next batch's launches are copied aside on the device as a
+    // batch runs (GPUs) and read after the pass; CPUs read each bounce's back as it ends. Both
+    // must be the batch's true lengths, depth by depth: a copy from the wrong counter or into
+    // the wrong slot would size every launch from another queue.
+    const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", "wavefront");
+    const Scene scene = load_cornell("CornellBox-Sphere.obj");
+    const Camera camera = validation::cornell_camera();
+    RenderSettings s = small_path_render(1, 9);
+    s.rr_depth = 2;  // queues that shrink from depth to depth
+    s.max_depth = 6;
+    std::vector<std::uint32_t> lengths[2];
+    for (int i = 0; i < 2; ++i) {
+        const cl::test::ScopedEnv sync("GEOCOLD_WAVEFRONT_SYNC", i == 0 ? "1" : "0");
+        const FlatBvh bvh = build_bvh(scene);
+        Renderer renderer(*context, scene, bvh, camera, s);
+        renderer.render_sample();
+        lengths[i].assign(renderer.last_queue_lengths().begin(), renderer.last_queue_lengths().end());
+    }
+    std::printf("rays queued for the next depth / shadow rays, depth by depth (read back | copied on the device):\n");
+    for (std::size_t d = 0; d < lengths[0].size() / 2; ++d)
+        std::printf("  depth %zu: %u / %u | %u / %u\n", d, lengths[0][2 * d], lengths[0][2 * d + 1], lengths[1][2 * d],
+                    lengths[1][2 * d + 1]);
+    ASSERT_EQ(lengths[0].size(), 2u * s.max_depth);
+    EXPECT_EQ(lengths[0], lengths[1]);
+    // Most camera rays hit the box and go on; Russian roulette ends some at each bounce.
+    EXPECT_GT(lengths[0][0], 1200u / 4);
+    EXPECT_GT(lengths[0][2], 0u);
+    EXPECT_LT(lengths[0][2], lengths[0][0]);
 }
 
 TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)

@@ -37,9 +37,11 @@ status=0
 timeout "${GEOCOLD_BENCH_TIMEOUT:-420}" ./build/bare/geocold-bench --json "$@" > "$out/bench.json" 2>> "$out/bench.txt" || status=$?
 # A/B of the wavefront's scheduling knobs, path tracing only, on every device, so the defaults
 # can be chosen per device from data: the counter read-back (on by default on CPUs, off on
-# GPUs) and the launch cap after the first bounce (GPUs; GEOCOLD_WAVEFRONT_GRID=0 lifts it).
+# GPUs) and the launch widths after the first bounce (GPUs size them from the last batch;
+# GEOCOLD_WAVEFRONT_GRID=N fixes N work-items per compute unit instead, 0 one per slot).
 if [ "${GEOCOLD_BENCH_AB:-1}" = 1 ]; then
-    for setting in GEOCOLD_WAVEFRONT_SYNC=0 GEOCOLD_WAVEFRONT_SYNC=1 GEOCOLD_WAVEFRONT_GRID=0; do
+    for setting in GEOCOLD_WAVEFRONT_SYNC=0 GEOCOLD_WAVEFRONT_SYNC=1 GEOCOLD_WAVEFRONT_GRID=0 \
+        GEOCOLD_WAVEFRONT_GRID=4096; do
         echo "== A/B: $setting (path tracing only)" >> "$out/bench.txt"
         env "$setting" timeout 90 ./build/bare/geocold-bench --scene cornell,dragon,large --no-rays \
             --no-first-image --repeats 3 2>&1 | grep -E "path|error" >> "$out/bench.txt" || true
