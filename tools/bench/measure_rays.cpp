@@ -155,6 +155,14 @@ std::string roofline_report(const DeviceSlot& d, const TraversalCost& cost, doub
 
 }  // namespace
 
+// Least rays per GPU launch. The dragon's 309k diffuse rays are about one wave of an H200's
+// resident threads (132 SMs x 2048), so a launch of them is held by its slowest warps and by
+// the launch's fixed cost; the renderer's wavefront launches hold up to 2^24 paths. H200,
+// 1024^2 against 2048^2 camera rays (2 runs): dragon primary / diffuse / shadow 5.97-5.80 vs
+// 8.83-8.95 G, 1.24-1.21 vs 1.61-1.66 G, 1.45-1.43 vs 2.06-2.12 G rays/s; 5.2M triangles
+// 1.76 vs 2.61 G, 1.11 vs 1.34 G, 1.35 vs 1.82 G.
+constexpr std::size_t kGpuRaysPerLaunch = std::size_t{1} << 22;
+
 void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>& devices, const FlatBvh& bvh,
                   const EmbreeTracer* embree, json& out)
 {
@@ -173,6 +181,8 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
     TraversalCost cost[3];
     for (DeviceSlot& d : devices) {
         OclTracer tracer(*d.context, bvh);
+        const std::size_t launch_rays = d.info.is_gpu ? kGpuRaysPerLaunch : 0;
+        tracer.set_min_launch_rays(launch_rays);
         const int repeats = d.info.is_gpu ? 4 * o.repeats : o.repeats;
         for (int k = 0; k < 3; ++k) {
             const RayKind& kind = kinds[k];
@@ -183,6 +193,18 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
             double to_embree = 0.0;
             if (interleave) to_embree = trace_interleaved(kind, *embree, tracer, threads, repeats, traced);
             else trace_on_device(kind, tracer, repeats, traced);
+            const std::uint32_t copies = tracer.copies();
+            // The set alone, in launches of its own size, for comparison (and its hits must be
+            // the copies' hits).
+            DeviceRays alone;
+            if (copies > 1) {
+                tracer.set_min_launch_rays(0);
+                trace_on_device(kind, tracer, repeats, alone);
+                tracer.set_min_launch_rays(launch_rays);
+                if (alone.single_result != traced.single_result)
+                    throw std::runtime_error(s.name + ", " + d.label() + ": " + kind.name +
+                                             " rays traced in copies found other hits than the set alone");
+            }
             const auto mrays_of = [&](const std::vector<double>& t) {
                 return t.empty() ? 0.0 : double(kind.rays->size()) / median(t) / 1e6;
             };
@@ -207,6 +229,15 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
             if (traces_packets(kind, tracer)) j["packets8_mrays_per_s"] = json_number(packets);
             j["bvh_layout"] = tracer.layout();  // BVH2 on GPUs, BVH8 or BVH4 on CPUs
             std::string form = tracer.layout();
+            if (copies > 1) {
+                const double alone_mrays = mrays_of(alone.single_seconds);
+                j["launch_rays"] = double(kind.rays->size()) * copies;
+                j["set_alone_mrays_per_s"] = json_number(alone_mrays);
+                char buffer[160];
+                std::snprintf(buffer, sizeof buffer, ", launches of %.2fM rays: the set %ux over; the set alone %.2f",
+                              double(kind.rays->size()) * copies / 1e6, copies, alone_mrays);
+                form += buffer;
+            }
             if (traces_packets(kind, tracer)) {
                 char buffer[128];
                 std::snprintf(buffer, sizeof buffer, packets_lead ? ", packets of 8 neighbouring rays; single rays %.2f"

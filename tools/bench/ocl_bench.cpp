@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 #include "host/render/pass_planner.h"
 #include "host/render/renderer.h"
@@ -20,20 +22,28 @@ OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh)
     if (has_packets()) m_closest8 = m_program.kernel("trace_closest8");
 }
 
-void OclTracer::upload(const std::vector<dev::GcRay>& rays)
+std::uint32_t OclTracer::upload(const std::vector<dev::GcRay>& rays, bool replicate)
 {
-    if (m_rays.count() < rays.size()) {
-        m_rays = cl::Buffer<dev::GcRay>::create(m_context, rays.size(), CL_MEM_READ_ONLY, "bench rays");
-        m_hits = cl::Buffer<dev::GcHit>::create(m_context, rays.size(), CL_MEM_WRITE_ONLY, "bench hits");
-        m_flags = cl::Buffer<std::uint32_t>::create(m_context, rays.size(), CL_MEM_WRITE_ONLY, "bench occlusion");
+    std::uint32_t copies = 1;
+    if (replicate && !rays.empty() && rays.size() < m_min_launch_rays)
+        copies = static_cast<std::uint32_t>((m_min_launch_rays + rays.size() - 1) / rays.size());
+    if (replicate) m_copies = copies;
+    const std::size_t total = rays.size() * copies;
+    if (m_rays.count() < total) {
+        m_rays = cl::Buffer<dev::GcRay>::create(m_context, total, CL_MEM_READ_ONLY, "bench rays");
+        m_hits = cl::Buffer<dev::GcHit>::create(m_context, total, CL_MEM_WRITE_ONLY, "bench hits");
+        m_flags = cl::Buffer<std::uint32_t>::create(m_context, total, CL_MEM_WRITE_ONLY, "bench occlusion");
     }
-    m_rays.write(rays);
+    // Each copy has its own hit slots, so every traversal's result is stored (none is dead
+    // code) and no two work-items write one slot; the first copy's are read back.
+    for (std::uint32_t c = 0; c < copies; ++c) m_rays.write(rays, c * rays.size());
+    return static_cast<std::uint32_t>(total);
 }
 
 // One untimed launch of `kernel` (its arguments set) over `count` work-items, then `repeats`
 // timed ones, each to the end of the device's work.
-std::vector<double> OclTracer::timed_launches(cl::Kernel& kernel, std::uint32_t count, int repeats,
-                                              const char* what)
+std::vector<double> OclTracer::timed_launches(cl::Kernel& kernel, std::uint32_t count, std::uint32_t copies,
+                                              int repeats, const char* what)
 {
     kernel.launch(m_context, count, 0, what);
     m_context.finish();
@@ -42,16 +52,34 @@ std::vector<double> OclTracer::timed_launches(cl::Kernel& kernel, std::uint32_t 
         const auto start = Clock::now();
         kernel.launch(m_context, count, 0, what);
         m_context.finish();
-        times.push_back(seconds_since(start));
+        times.push_back(seconds_since(start) / copies);
     }
     return times;
 }
 
-void OclTracer::read_prims(std::vector<std::uint32_t>& prims) const
+namespace {
+
+// Checks that every copy of the set found the first copy's answers (the same rays through the
+// same BVH: any other answer means a copy was not the set).
+void expect_copies_agree(const std::vector<std::uint32_t>& all, std::size_t set_size, const char* what)
 {
-    std::vector<dev::GcHit> hits(prims.size());
+    for (std::size_t i = set_size; i < all.size(); ++i)
+        if (all[i] != all[i % set_size])
+            throw std::runtime_error(std::string("benchmark ") + what + ": copy " + std::to_string(i / set_size) +
+                                     " of the ray set found another answer than the set for ray " +
+                                     std::to_string(i % set_size));
+}
+
+}  // namespace
+
+void OclTracer::read_prims(std::vector<std::uint32_t>& prims, std::uint32_t copies) const
+{
+    std::vector<dev::GcHit> hits(prims.size() * copies);
     m_hits.read(hits, 0);
-    for (std::size_t i = 0; i < hits.size(); ++i) prims[i] = hits[i].prim;
+    std::vector<std::uint32_t> all(hits.size());
+    for (std::size_t i = 0; i < hits.size(); ++i) all[i] = hits[i].prim;
+    expect_copies_agree(all, prims.size(), "closest hits");
+    std::copy_n(all.begin(), prims.size(), prims.begin());
 }
 
 std::vector<double> OclTracer::closest(const std::vector<dev::GcRay>& rays, int repeats,
@@ -59,11 +87,10 @@ std::vector<double> OclTracer::closest(const std::vector<dev::GcRay>& rays, int 
 {
     prims.assign(rays.size(), GC_INVALID);
     if (rays.empty()) return {};
-    upload(rays);
-    const auto count = static_cast<std::uint32_t>(rays.size());
+    const std::uint32_t count = upload(rays);
     m_closest.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_hits, count);
-    const std::vector<double> times = timed_launches(m_closest, count, repeats, "benchmark closest hits");
-    read_prims(prims);
+    const std::vector<double> times = timed_launches(m_closest, count, m_copies, repeats, "benchmark closest hits");
+    read_prims(prims, m_copies);
     return times;
 }
 
@@ -77,15 +104,15 @@ std::vector<double> OclTracer::closest_packets(const std::vector<dev::GcRay>& ra
     lanes.resize(packets * 8, rays.back());  // idle lanes: copies, never traced
     std::vector<int> active(lanes.size(), 0);
     std::fill_n(active.begin(), rays.size(), 1);
-    upload(lanes);
+    upload(lanes, false);
     if (m_active.count() < active.size())
         m_active = cl::Buffer<int>::create(m_context, active.size(), CL_MEM_READ_ONLY, "bench packet lanes");
     m_active.write(active);
     const auto count = static_cast<std::uint32_t>(packets);
     m_closest8.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_active, m_hits, count);
     const std::vector<double> times =
-        timed_launches(m_closest8, count, repeats, "benchmark closest hits, packets of eight");
-    read_prims(prims);
+        timed_launches(m_closest8, count, 1, repeats, "benchmark closest hits, packets of eight");
+    read_prims(prims, 1);
     return times;
 }
 
@@ -94,11 +121,13 @@ std::vector<double> OclTracer::occluded(const std::vector<dev::GcRay>& rays, int
 {
     flags.assign(rays.size(), 0u);
     if (rays.empty()) return {};
-    upload(rays);
-    const auto count = static_cast<std::uint32_t>(rays.size());
+    const std::uint32_t count = upload(rays);
     m_any.set_args(m_bvh.nodes(), m_bvh.triangles(), m_rays, m_flags, count);
-    const std::vector<double> times = timed_launches(m_any, count, repeats, "benchmark any hits");
-    m_flags.read(flags, 0);
+    const std::vector<double> times = timed_launches(m_any, count, m_copies, repeats, "benchmark any hits");
+    std::vector<std::uint32_t> all(rays.size() * m_copies);
+    m_flags.read(all, 0);
+    expect_copies_agree(all, rays.size(), "any hits");
+    std::copy_n(all.begin(), rays.size(), flags.begin());
     return times;
 }
 

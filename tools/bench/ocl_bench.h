@@ -20,7 +20,8 @@
 namespace gc::bench {
 
 // trace_closest / trace_any over device-resident ray buffers. Times are wall seconds of
-// launch + clFinish (rays and BVH uploaded beforehand, results not read back).
+// launch + clFinish (rays and BVH uploaded beforehand, results not read back), per pass over
+// the ray set.
 class OclTracer {
 public:
     OclTracer(const cl::Context& context, const FlatBvh& bvh);
@@ -32,6 +33,15 @@ public:
     std::vector<double> closest(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& prims);
     std::vector<double> occluded(const std::vector<dev::GcRay>& rays, int repeats, std::vector<std::uint32_t>& flags);
 
+    // Launches of at least `rays` rays: a smaller set is uploaded that many times over, back
+    // to back, and one launch traces every copy (0: the set as it is). A GPU launch of a few
+    // hundred thousand rays is about one wave of its resident threads, so its figure is held by
+    // the wave's tail and the launch's fixed cost; the renderer's launches hold up to 2^24 paths.
+    void set_min_launch_rays(std::size_t rays) { m_min_launch_rays = rays; }
+    // Copies of the set that the last closest() or occluded() traced per launch (packets of
+    // eight always trace one).
+    std::uint32_t copies() const { return m_copies; }
+
     // Whether closest hits can also be traced eight neighbouring rays at a time as one packet
     // (trace.cl's trace_closest8, gc_packet8.h): on the BVH8, where the CPU path megakernel
     // traces its camera rays that way. Embree's counterpart is rtcIntersect16.
@@ -41,9 +51,15 @@ public:
                                         std::vector<std::uint32_t>& prims);
 
 private:
-    void upload(const std::vector<dev::GcRay>& rays);
-    std::vector<double> timed_launches(cl::Kernel& kernel, std::uint32_t count, int repeats, const char* what);
-    void read_prims(std::vector<std::uint32_t>& prims) const;  // prims.size() hits' primitives
+    // Uploads `rays` (copied as set_min_launch_rays asks where `replicate`) and sizes the
+    // result buffers; returns the work-items of a launch over them.
+    std::uint32_t upload(const std::vector<dev::GcRay>& rays, bool replicate = true);
+    // Seconds per pass over the set: a launch's time over the `copies` of it that it traced.
+    std::vector<double> timed_launches(cl::Kernel& kernel, std::uint32_t count, std::uint32_t copies, int repeats,
+                                       const char* what);
+    // The first prims.size() hits' primitives, after checking that each of the `copies` of the
+    // set found the same (throws where one did not).
+    void read_prims(std::vector<std::uint32_t>& prims, std::uint32_t copies) const;
 
     const cl::Context& m_context;
     DeviceBvh m_bvh;  // before m_program: its layout picks the traversal compiled
@@ -55,6 +71,8 @@ private:
     cl::Buffer<int> m_active;  // trace_closest8's lane mask
     cl::Buffer<dev::GcHit> m_hits;
     cl::Buffer<std::uint32_t> m_flags;
+    std::size_t m_min_launch_rays = 0;
+    std::uint32_t m_copies = 1;
 };
 
 struct PathFigures {
