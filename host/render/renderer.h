@@ -79,7 +79,7 @@ private:
     std::uint32_t m_samples = 0;
     PassPlanner m_planner;              // samples per pass of the megakernel; pass times of any form
     bool m_sync_counts = false;         // wavefront: the host reads each bounce's queue lengths back (CPUs)
-    WavefrontLaunches m_launches;       // wavefront: launch widths where it does not
+    WavefrontLaunches m_launches;       // wavefront: each launch's width (from the last batch on GPUs)
     std::vector<std::uint32_t> m_last_queue_lengths;  // wavefront: see last_queue_lengths()
     std::uint32_t m_last_queue_paths = 0;
     bool m_lengths_on_device = false;   // m_queue_lengths holds lengths not yet read
