@@ -167,7 +167,7 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
         m_counters = cl::Buffer<std::uint32_t>::create(context, GC_COUNTER_COUNT, CL_MEM_READ_WRITE, "queue counters");
         m_queue_lengths = cl::Buffer<std::uint32_t>::create(context, 2 * std::size_t{std::max(m_params.max_depth, 1u)},
                                                             CL_MEM_READ_WRITE, "queue lengths per depth");
-        m_last_queue_lengths.assign(m_queue_lengths.count(), 0u);
+        m_last_queue_lengths.assign(2 * std::size_t{m_params.max_depth}, 0u);
         m_generate = m_program.kernel("generate");
         m_extend = m_program.kernel("extend");
         m_shade = m_program.kernel("shade");

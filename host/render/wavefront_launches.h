@@ -35,8 +35,6 @@ public:
     // Width of the shadow-ray launch at `depth`.
     std::uint32_t shadow_width(std::uint32_t depth, std::uint32_t paths) const;
 
-    // Whether launches are sized from recorded batches (no fixed width).
-    bool predicts() const { return !m_fixed_width; }
     // The queue lengths a batch of `paths` paths left: for each depth, the rays it queued for
     // the next depth, then its shadow rays (2 x max_depth values). Later batches are sized
     // from them; a span of another length is ignored.

@@ -67,7 +67,6 @@ const std::vector<std::uint32_t> kRecordedLengths = {8000, 9000, 5000, 7000, 200
 TEST(WavefrontLaunches, FirstBatchUsesTheFirstWidthAfterTheFirstBounce)
 {
     const WavefrontLaunches launches(3, std::nullopt, 4096, 64);
-    EXPECT_TRUE(launches.predicts());
     EXPECT_FALSE(launches.has_history());
     EXPECT_EQ(launches.ray_width(0, kRecordedPaths), 0u);  // one per entry: the full first queue
     EXPECT_EQ(launches.shadow_width(0, kRecordedPaths), 0u);
@@ -105,7 +104,6 @@ TEST(WavefrontLaunches, EmptyQueuesStillGetTheLeastWidth)
 TEST(WavefrontLaunches, AFixedWidthIgnoresRecordedBatches)
 {
     WavefrontLaunches launches(3, 132u, 4096, 64);
-    EXPECT_FALSE(launches.predicts());
     launches.record(kRecordedLengths, kRecordedPaths);
     EXPECT_EQ(launches.ray_width(0, kRecordedPaths), 0u);
     EXPECT_EQ(launches.ray_width(1, kRecordedPaths), 132u);
