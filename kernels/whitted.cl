@@ -57,7 +57,7 @@ static float3 gc_whitted_albedo(GC_TEXELS_PARAM, __global const GcTexture* textu
 }
 
 /* The geometric normal on the side that direction w leaves into. */
-static float3 gc_whitted_side(float3 ng, float3 w) { return dot(ng, w) >= 0.0f ? ng : -ng; }
+static float3 gc_whitted_side(float3 ng, float3 w) { return gc_dot(ng, w) >= 0.0f ? ng : -ng; }
 
 static bool gc_whitted_nonzero(float3 v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
 
@@ -68,7 +68,7 @@ static float gc_whitted_priority(float3 w) { return fmax(w.x, fmax(w.y, w.z)); }
 static bool gc_whitted_unoccluded(GC_BVH_PARAMS, float3 origin, float3 target)
 {
     const float3 d = target - origin;
-    const float len = length(d);
+    const float len = gc_length(d);
     if (!(len > 0.0f)) return true;
     return !gc_trace_any(GC_BVH_ARGS, gc_make_ray(origin, d / len, 0.0f, len));
 }
@@ -133,9 +133,9 @@ GC_ITEM_BODY gc_whitted_item(const uint i,
         }
         const GcSurface s = gc_surface_at(attribs[hit.prim], ray, hit);
         const GcMaterial m = materials[s.material];
-        const float3 wo = -normalize(ray.dir_tmax.xyz);
+        const float3 wo = -gc_normalize(ray.dir_tmax.xyz);
 
-        if (gc_whitted_nonzero(m.emission.xyz) && gc_emits_toward(m, dot(s.ng, wo))) L += weight * m.emission.xyz;
+        if (gc_whitted_nonzero(m.emission.xyz) && gc_emits_toward(m, gc_dot(s.ng, wo))) L += weight * m.emission.xyz;
         if (depth >= params.max_depth) continue;
 
         /* Local shading: ambient + shadowed direct light. */
@@ -146,13 +146,13 @@ GC_ITEM_BODY gc_whitted_item(const uint i,
             for (uint k = 0u; k < params.num_point_lights; ++k) {
                 const GcPointLight light = point_lights[k];
                 const float3 to_light = light.position.xyz - s.p;
-                const float dist2 = dot(to_light, to_light);
+                const float dist2 = gc_dot(to_light, to_light);
                 if (!(dist2 > 0.0f)) continue;
                 const float3 wi = to_light / sqrt(dist2);
                 const float3 brdf_cos = gc_whitted_brdf_cos(m, albedo, s.ns, s.ng, wo, wi);
                 const float3 c = gc_whitted_point_light(brdf_cos, light.intensity.xyz, dist2);
                 if (gc_whitted_nonzero(c) &&
-                    gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
+                    gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi), s.spawn_scale),
                                           light.position.xyz))
                     direct += c;
             }
@@ -166,17 +166,17 @@ GC_ITEM_BODY gc_whitted_item(const uint i,
                 const GcTriangleAttribs la = attribs[e.triangle];
                 const GcMaterial lm = materials[la.material];
                 const float3 to_light = p_light - s.p;
-                const float dist2 = dot(to_light, to_light);
+                const float dist2 = gc_dot(to_light, to_light);
                 if (dist2 > 0.0f && e.area > 0.0f) {
                     const float3 wi = to_light / sqrt(dist2);
-                    const float cos_light = dot(la.ng.xyz, -wi);
+                    const float cos_light = gc_dot(la.ng.xyz, -wi);
                     if (gc_emits_toward(lm, cos_light)) {
                         const float3 brdf_cos = gc_whitted_brdf_cos(m, albedo, s.ns, s.ng, wo, wi);
                         const float3 c = gc_whitted_area_light(brdf_cos, lm.emission.xyz, cos_light, dist2,
                                                                e.pmf / e.area);
                         if (gc_whitted_nonzero(c) &&
-                            gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi)),
-                                                  gc_offset_ray_origin(p_light, gc_whitted_side(la.ng.xyz, -wi))))
+                            gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, wi), s.spawn_scale),
+                                                  gc_offset_ray_origin(p_light, gc_whitted_side(la.ng.xyz, -wi), gc_spawn_scale(s.p, la.ng.w))))
                             direct += c;
                     }
                 }
@@ -187,11 +187,11 @@ GC_ITEM_BODY gc_whitted_item(const uint i,
         /* Secondary rays: segment depth + 1 <= max_depth. */
         const GcWhittedSpecular spec = gc_whitted_specular(m, s.ns, wo);
         gc_whitted_push(stack_ray, stack_weight, stack_depth, &sp,
-                        gc_make_ray(gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, spec.refract_dir)),
+                        gc_make_ray(gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, spec.refract_dir), s.spawn_scale),
                                     spec.refract_dir, 0.0f, GC_RAY_UNBOUNDED),
                         weight * spec.refract_weight, depth + 1u);
         gc_whitted_push(stack_ray, stack_weight, stack_depth, &sp,
-                        gc_make_ray(gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, spec.reflect_dir)),
+                        gc_make_ray(gc_offset_ray_origin(s.p, gc_whitted_side(s.ng, spec.reflect_dir), s.spawn_scale),
                                     spec.reflect_dir, 0.0f, GC_RAY_UNBOUNDED),
                         weight * spec.reflect_weight, depth + 1u);
     }

@@ -39,6 +39,16 @@ Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
     return len > 0.0f && std::isfinite(len) ? Normal3(n / len) : Normal3(0, 0, 0);
 }
 
+// The largest |coordinate| of a triangle's corners: the scale of its hit points' rounding
+// error, from which the kernels size the offset of rays that leave it (gc_spawn.h).
+float corner_magnitude(const Point3& a, const Point3& b, const Point3& c)
+{
+    float m = 0.0f;
+    for (const Point3& p : {a, b, c})
+        m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    return m;
+}
+
 // Per-triangle tangent frame for normal maps: T = dP/du (unit, orthogonal to the face normal)
 // and the sign w that makes B = w * cross(n, T) point up the image, i.e. along -dP/dv (glTF's
 // uv origin is the top-left texel and a normal map's +Y is "up"). Solves the 2x2 system
@@ -98,7 +108,8 @@ void fill_triangle_attribs(const Scene& scene, dev::GcTriangleAttribs* out, std:
         a.n0 = v4(scene.normals[3 * i + 0]);
         a.n1 = v4(scene.normals[3 * i + 1]);
         a.n2 = v4(scene.normals[3 * i + 2]);
-        a.ng = v4(face_normal(scene.vertex(i, 0), scene.vertex(i, 1), scene.vertex(i, 2)));
+        a.ng = v4(face_normal(scene.vertex(i, 0), scene.vertex(i, 1), scene.vertex(i, 2)),
+                  corner_magnitude(scene.vertex(i, 0), scene.vertex(i, 1), scene.vertex(i, 2)));
         if (has_uv) {
             const glm::vec2 t0 = scene.uvs[3 * i + 0], t1 = scene.uvs[3 * i + 1], t2 = scene.uvs[3 * i + 2];
             a.uv01 = {t0.x, t0.y, t1.x, t1.y};

@@ -44,7 +44,7 @@ GC_FUNC float3 gc_aov_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
  * Recognisable, not physically based. dir is the viewing ray's direction. */
 GC_FUNC float3 gc_aov_preview(float3 albedo, float3 ns, float3 dir, float3 emission)
 {
-    const float cosine = fabs(dot(ns, dir));
+    const float cosine = fabs(gc_dot(ns, dir));
     return albedo * (0.15f + 0.85f * cosine) + fmin(emission, make_float3(1.0f, 1.0f, 1.0f));
 }
 

@@ -43,6 +43,7 @@
 
 #include "gc_platform.h"
 #include "gc_types.h"
+#include "gc_vecmath.h"
 #include "gc_sampling.h"
 #include "gc_trig.h"
 
@@ -144,14 +145,14 @@ GC_FUNC float3 gc_phong_eval_upper(float3 kd, float3 ks, float exponent, float3 
      * at normal incidence exactly ks, so kd + ks <= 1 conserves energy; the lobe is
      * symmetric in wo and wi, so the BRDF is reciprocal. */
     float3 f = kd * GC_INV_PI;
-    float c = dot(wi, gc_reflect_z(wo));
+    float c = gc_dot(wi, gc_reflect_z(wo));
     if (c > 0.0f) f = f + ks * ((exponent + 2.0f) * GC_INV_2PI * pow(c, exponent));
     return f;
 }
 
 GC_FUNC float gc_phong_pdf_upper(float p_spec, float exponent, float3 wo, float3 wi)
 {
-    float c = dot(wi, gc_reflect_z(wo));
+    float c = gc_dot(wi, gc_reflect_z(wo));
     return (1.0f - p_spec) * gc_cosine_hemisphere_pdf(wi.z) + p_spec * gc_phong_lobe_pdf(c, exponent);
 }
 
@@ -246,24 +247,24 @@ GC_FUNC float gc_ggx_g2(float3 wo, float3 wi, float alpha)
  * the horizon), lift to the hemisphere and unstretch. */
 GC_FUNC float3 gc_ggx_sample_visible_normal(float3 wo, float alpha, float u1, float u2)
 {
-    const float3 vh = normalize(make_float3(alpha * wo.x, alpha * wo.y, wo.z));
+    const float3 vh = gc_normalize(make_float3(alpha * wo.x, alpha * wo.y, wo.z));
     const float len2 = vh.x * vh.x + vh.y * vh.y;
     const float3 t1 = len2 > 0.0f ? make_float3(-vh.y, vh.x, 0.0f) * (1.0f / sqrt(len2)) : make_float3(1.0f, 0.0f, 0.0f);
-    const float3 t2 = cross(vh, t1);
+    const float3 t2 = gc_cross(vh, t1);
     const float r = sqrt(u1);
     const float2 cs = gc_cos_sin_turns(u2);
     const float p1 = r * cs.x;
     const float s = 0.5f * (1.0f + vh.z);
     const float p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * (r * cs.y);
     const float3 nh = t1 * p1 + t2 * p2 + vh * sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2));
-    return normalize(make_float3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
+    return gc_normalize(make_float3(alpha * nh.x, alpha * nh.y, fmax(nh.z, 0.0f)));
 }
 
 /* Density of a reflected direction wi whose half vector was drawn by
  * gc_ggx_sample_visible_normal: D_wo(wm) / (4 wo.wm) = G1(wo) D(wm) / (4 wo.z). */
 GC_FUNC float gc_ggx_reflection_pdf(float3 wo, float3 wi, float alpha)
 {
-    const float3 wm = normalize(wo + wi);
+    const float3 wm = gc_normalize(wo + wi);
     return gc_ggx_g1(wo, alpha) * gc_ggx_d(wm, alpha) / (4.0f * wo.z);
 }
 
@@ -295,8 +296,8 @@ GC_FUNC float3 gc_pbr_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
     const float alpha = gc_pbr_alpha(m);
     const float f0 = gc_pbr_f0(m);
-    const float3 wm = normalize(wo + wi);
-    const float sw = gc_schlick_weight(dot(wo, wm));
+    const float3 wm = gc_normalize(wo + wi);
+    const float sw = gc_schlick_weight(gc_dot(wo, wm));
     const float fd = f0 + (1.0f - f0) * sw;
     const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
     const float3 fresnel = make_float3(fd, fd, fd) * (1.0f - metallic) + fm * metallic;
@@ -391,7 +392,7 @@ GC_FUNC GcBsdfSample gc_dielectric_sample(GcMaterial m, float3 wo, float u0)
     float side = gc_bsdf_side(wo);
     float3 wi = wo * (-1.0f / eta) + make_float3(0.0f, 0.0f, side * (cos_i / eta - cos_t));
     float t = (1.0f - fr) / (eta * eta);
-    s.wi = normalize(wi);
+    s.wi = gc_normalize(wi);
     s.f = make_float3(t, t, t) * (1.0f / cos_t);
     s.pdf_w = 1.0f - fr;
     s.weight = make_float3(1.0f, 1.0f, 1.0f) * (1.0f / (eta * eta));
@@ -456,7 +457,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
         const float3 p = gc_pbr_lobe_probs(m, albedo, wo_up.z);
         if (u0 < p.x) {
             const float3 wm = gc_ggx_sample_visible_normal(wo_up, gc_pbr_alpha(m), u1, u2);
-            wi_up = wm * (2.0f * dot(wo_up, wm)) - wo_up;
+            wi_up = wm * (2.0f * gc_dot(wo_up, wm)) - wo_up;
             /* Reflections off visible facets can still leave below the horizon: the sample
              * fails, and gc_bsdf_pdf is zero there, so the density stays consistent. */
             if (!(wi_up.z > 0.0f)) return gc_bsdf_no_sample();

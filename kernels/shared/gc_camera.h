@@ -7,6 +7,7 @@
 #define GC_CAMERA_H
 
 #include "gc_accessors.h"
+#include "gc_vecmath.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -15,7 +16,7 @@ GC_FUNC GcRay gc_camera_ray(GcCamera cam, uint width, uint height, uint px, uint
     const float sx = 2.0f * ((gc_float(px) + jx) / gc_float(width)) - 1.0f;
     const float sy = 1.0f - 2.0f * ((gc_float(py) + jy) / gc_float(height));
     const float3 dir = GC_XYZ(cam.forward) + sx * GC_XYZ(cam.right) + sy * GC_XYZ(cam.up);
-    return gc_make_ray(GC_XYZ(cam.origin), normalize(dir), 0.0f, GC_RAY_UNBOUNDED);
+    return gc_make_ray(GC_XYZ(cam.origin), gc_normalize(dir), 0.0f, GC_RAY_UNBOUNDED);
 }
 
 GC_NAMESPACE_END

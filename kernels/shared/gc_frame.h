@@ -9,6 +9,7 @@
 #define GC_FRAME_H
 
 #include "gc_platform.h"
+#include "gc_vecmath.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -38,7 +39,7 @@ GC_FUNC GcFrame gc_frame_from_normal(float3 n)
 /* World -> local: the frame is orthonormal, so the inverse is the transpose. */
 GC_FUNC float3 gc_frame_to_local(GcFrame fr, float3 v)
 {
-    return make_float3(dot(v, fr.t), dot(v, fr.b), dot(v, fr.n));
+    return make_float3(gc_dot(v, fr.t), gc_dot(v, fr.b), gc_dot(v, fr.n));
 }
 
 /* Local -> world. */

@@ -1,13 +1,14 @@
 /*
- * gc_path.h — the pieces of the path integrator that are pure functions: spawning rays off
- * a surface, choosing and sampling an emitter, and the light density used by MIS. Shared so
- * the host tests and the Vulkan reference make the same decisions as the OpenCL kernels.
+ * gc_path.h — the pieces of the path integrator that are pure functions: choosing and
+ * sampling an emitter, and the light density used by MIS. Shared so the host tests and the
+ * Vulkan reference make the same decisions as the OpenCL kernels.
  */
 #ifndef GC_PATH_H
 #define GC_PATH_H
 
 #include "gc_accessors.h"
 #include "gc_sampling.h"
+#include "gc_spawn.h"
 
 #ifndef GC_EMITTERS_PARAM
 #define GC_EMITTERS_PARAM GC_GLOBAL const GcEmitter* emitters
@@ -16,26 +17,6 @@
 #endif
 
 GC_NAMESPACE_BEGIN
-
-/* Moves p off its surface along the geometric normal n (pointing to the side the new ray
- * leaves from) by a few ulps of p's coordinates, so the new ray cannot re-hit the surface.
- * Wächter & Binder 2019, "A Fast and Robust Method for Avoiding Self-Intersection"
- * (Ray Tracing Gems, ch. 6). Integer arithmetic on the float bits: identical on every device. */
-GC_FUNC float gc_offset_component(float p, float n)
-{
-    const float origin = 1.0f / 32.0f;
-    const float float_scale = 1.0f / 65536.0f;
-    const float int_scale = 256.0f;
-    if (fabs(p) < origin) return p + float_scale * n;
-    const int of = gc_int(int_scale * n);
-    return gc_as_float(gc_as_uint(p) + gc_uint(p < 0.0f ? -of : of));
-}
-
-GC_FUNC float3 gc_offset_ray_origin(float3 p, float3 n)
-{
-    return make_float3(gc_offset_component(p.x, n.x), gc_offset_component(p.y, n.y),
-                       gc_offset_component(p.z, n.z));
-}
 
 /* Luminance weights used for emitter power; make_emitters (host) uses the same. */
 GC_FUNC float gc_emitter_luminance(float3 radiance) { return gc_luminance(radiance); }

@@ -134,20 +134,20 @@ GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs 
     if (GC_USE_NORMAL_MAPS == 0 || m.normal_texture == GC_INVALID) return ns;
     const float4 tangent = gc_triangle_tangent(a, bary.x, bary.y);
     const float3 t_tri = GC_XYZ(tangent);
-    const float3 t_raw = t_tri - ns * dot(ns, t_tri);
-    const float t_len = length(t_raw);
+    const float3 t_raw = t_tri - ns * gc_dot(ns, t_tri);
+    const float t_len = gc_length(t_raw);
     if (!(t_len > 1.0e-6f)) return ns;
     const float3 t = t_raw * (1.0f / t_len);
-    const float3 b = cross(ns, t) * tangent.w;
+    const float3 b = gc_cross(ns, t) * tangent.w;
     const float4 tex = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.normal_texture), uv.x, uv.y);
     /* glTF normalTexture.scale multiplies x and y only (then the result is renormalised). */
     const float xy_scale = m.normal_scale;
     const float3 n = t * ((2.0f * tex.x - 1.0f) * xy_scale) + b * ((2.0f * tex.y - 1.0f) * xy_scale) +
                      ns * (2.0f * tex.z - 1.0f);
-    const float n_len = length(n);
+    const float n_len = gc_length(n);
     if (!(n_len > 1.0e-6f)) return ns;
     const float3 nn = n * (1.0f / n_len);
-    return dot(nn, ng) > 0.0f ? nn : ns;
+    return gc_dot(nn, ng) > 0.0f ? nn : ns;
 }
 
 /* Texture coordinates at barycentrics b = (b0, b1, b2) of the triangle's corners. */
@@ -165,7 +165,7 @@ GC_FUNC bool gc_alpha_transparent(GcMaterial m, float alpha, float u)
 }
 
 /* The geometric normal on the side that direction w leaves into. */
-GC_FUNC float3 gc_side_normal(float3 ng, float3 w) { return dot(ng, w) >= 0.0f ? ng : -ng; }
+GC_FUNC float3 gc_side_normal(float3 ng, float3 w) { return gc_dot(ng, w) >= 0.0f ? ng : -ng; }
 
 GC_FUNC float4 gc_with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, w); }
 
@@ -214,14 +214,16 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
         const GcMaterial lm = GC_MATERIAL(la.material);
         const float3 to_light = p_light - p;
-        const float dist = length(to_light);
+        const float dist = gc_length(to_light);
         if (!(dist > 0.0f)) return ls;
         ls.wi = to_light / dist;
-        const float cos_light = dot(GC_XYZ(la.ng), -ls.wi);
+        const float cos_light = gc_dot(GC_XYZ(la.ng), -ls.wi);
         if (!gc_emits_toward(lm, cos_light)) return ls;
         ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, gc_triangle_uv(la, b));
         ls.pdf_w = group_pmf * gc_light_pdf_w(GC_XYZ(lm.emission), params.emitter_power, dist, cos_light);
-        ls.target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -ls.wi));
+        /* The shadow ray from p must stop short of the light's own triangle: its t there carries
+         * error in proportion to both ends' magnitudes. */
+        ls.target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -ls.wi), gc_spawn_scale(p, la.ng.w));
         ls.dist = dist;
         ls.kind = GC_LIGHT_AREA;
         return ls;
@@ -233,7 +235,7 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         if (i >= params.num_point_lights) i = params.num_point_lights - 1u;
         const GcPointLight light = GC_POINT_LIGHT(i);
         const float3 to_light = GC_XYZ(light.position) - p;
-        const float dist = length(to_light);
+        const float dist = gc_length(to_light);
         if (!(dist > 0.0f)) return ls;
         ls.wi = to_light / dist;
         ls.radiance = GC_XYZ(light.intensity) * (1.0f / (dist * dist));
@@ -328,7 +330,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
             path.radiance = gc_with_w(L, path.radiance.w);
             if (path.depth < params.max_depth) {
                 const float3 d = -wo_world;
-                res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, d)), d, 0.0f, GC_RAY_UNBOUNDED);
+                res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, d), s.spawn_scale), d, 0.0f, GC_RAY_UNBOUNDED);
                 path.flags = GC_PATH_SPECULAR;
                 res.flags = GC_VERTEX_CONTINUE;
             }
@@ -339,7 +341,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
 
     /* Emission seen by this ray. */
     const float3 Le = gc_shade_emission(GC_SHADE_ARGS, m, s.uv);
-    const float cos_out = dot(s.ng, wo_world);
+    const float cos_out = gc_dot(s.ng, wo_world);
     if ((Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) && gc_emits_toward(m, cos_out)) {
         float w = 1.0f;
         if ((path.flags & GC_PATH_SPECULAR) == 0u && params.num_emitters > 0u)
@@ -368,12 +370,12 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
             const float w = ls.kind == GC_LIGHT_POINT ? 1.0f : gc_power_heuristic(ls.pdf_w, gc_bsdf_pdf(m, albedo, wo, wi));
             const float3 contribution = beta * f * (fabs(wi.z) * w / ls.pdf_w) * ls.radiance;
             if (contribution.x > 0.0f || contribution.y > 0.0f || contribution.z > 0.0f) {
-                const float3 origin = gc_offset_ray_origin(s.p, gc_side_normal(s.ng, ls.wi));
+                const float3 origin = gc_offset_ray_origin(s.p, gc_side_normal(s.ng, ls.wi), s.spawn_scale);
                 if (ls.kind == GC_LIGHT_ENV) {
                     res.shadow.ray = gc_make_ray(origin, ls.wi, 0.0f, GC_RAY_UNBOUNDED);
                 } else {
                     const float3 d = ls.target - origin;
-                    const float len = length(d);
+                    const float len = gc_length(d);
                     res.shadow.ray = gc_make_ray(origin, d / len, 0.0f, len);
                 }
                 res.shadow.contribution = gc_with_w(contribution, 0.0f);
@@ -408,7 +410,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
         return res;
     }
     const float3 wi_world = gc_frame_to_world(frame, bs.wi);
-    res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi_world)), wi_world, 0.0f, GC_RAY_UNBOUNDED);
+    res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi_world), s.spawn_scale), wi_world, 0.0f, GC_RAY_UNBOUNDED);
     path.throughput = gc_with_w(beta, bs.pdf_w);
     path.flags = (bs.flags & GC_BSDF_SPECULAR) != 0u ? GC_PATH_SPECULAR : 0u;
     res.path = path;

@@ -6,6 +6,8 @@
 #define GC_SHADING_H
 
 #include "gc_accessors.h"
+#include "gc_spawn.h"
+#include "gc_vecmath.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -15,6 +17,7 @@ GC_STRUCT(GcSurface) {
     float3 ng; /* unit geometric normal, as wound (not flipped toward the ray) */
     float3 ns; /* unit shading normal, on the same side as ng */
     float2 uv;
+    float spawn_scale; /* gc_offset_ray_origin's scale for rays leaving p (gc_path.h) */
     uint material;
     uint prim;
 } GC_STRUCT_END(GcSurface)
@@ -25,12 +28,13 @@ GC_FUNC GcSurface gc_surface_at(GcTriangleAttribs a, GcRay ray, GcHit hit)
     const float b0 = 1.0f - hit.u - hit.v;
     s.p = GC_XYZ(ray.org_tmin) + hit.t * GC_XYZ(ray.dir_tmax);
     s.ng = GC_XYZ(a.ng);
+    s.spawn_scale = gc_spawn_scale(GC_XYZ(ray.org_tmin), a.ng.w);
     const float3 n = b0 * GC_XYZ(a.n0) + hit.u * GC_XYZ(a.n1) + hit.v * GC_XYZ(a.n2);
-    const float len = length(n);
+    const float len = gc_length(n);
     s.ns = len > 0.0f ? n * (1.0f / len) : s.ng;
     /* Interpolated normals may point to the other side of the geometric one on badly
      * authored meshes; keep them on ng's side so front/back decisions agree. */
-    if (dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
+    if (gc_dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
     s.uv = make_float2(b0 * a.uv01.x + hit.u * a.uv01.z + hit.v * a.uv2_u,
                        b0 * a.uv01.y + hit.u * a.uv01.w + hit.v * a.uv2_v);
     s.material = a.material;

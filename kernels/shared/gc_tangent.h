@@ -20,6 +20,7 @@
 #define GC_TANGENT_H
 
 #include "gc_types.h"
+#include "gc_vecmath.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -58,7 +59,7 @@ GC_FUNC float4 gc_tangent_decode(uint bits)
                                             (1.0f - fabs(x)) * gc_sign_not_zero(y), z)
                               : make_float3(x, y, z);
     /* |o| >= 1/sqrt(3) for every code: never a division by zero. */
-    const float3 t = o * (1.0f / length(o));
+    const float3 t = o * (1.0f / gc_length(o));
     return make_float4(t.x, t.y, t.z, (bits & GC_TANGENT_SIGN_BIT) != 0u ? -1.0f : 1.0f);
 }
 

@@ -32,7 +32,7 @@ GC_NAMESPACE_BEGIN
  * is zero, even where interpolated shading normals would disagree. */
 GC_FUNC float3 gc_whitted_brdf_cos(GcMaterial m, float3 albedo, float3 ns, float3 ng, float3 wo, float3 wi)
 {
-    if (!(dot(ng, wo) * dot(ng, wi) > 0.0f)) return make_float3(0.0f, 0.0f, 0.0f);
+    if (!(gc_dot(ng, wo) * gc_dot(ng, wi) > 0.0f)) return make_float3(0.0f, 0.0f, 0.0f);
     GcFrame frame = gc_frame_from_normal(ns);
     float3 wo_l = gc_frame_to_local(frame, wo);
     float3 wi_l = gc_frame_to_local(frame, wi);
@@ -69,7 +69,7 @@ GC_FUNC float3 gc_whitted_ambient(GcMaterial m, float3 albedo, float3 env)
 /* Mirror direction of wo about the unit normal n (either side). */
 GC_FUNC float3 gc_whitted_reflect(float3 wo, float3 n)
 {
-    return n * (2.0f * dot(n, wo)) - wo;
+    return n * (2.0f * gc_dot(n, wo)) - wo;
 }
 
 /* The secondary rays a surface spawns. A zero weight means "no such ray". */
@@ -100,7 +100,7 @@ GC_FUNC GcWhittedSpecular gc_whitted_specular(GcMaterial m, float3 ns, float3 wo
     }
     if (m.type != GC_MAT_DIELECTRIC) return s;
 
-    float cos_o = dot(ns, wo);
+    float cos_o = gc_dot(ns, wo);
     /* n: the normal on wo's side; eta = n_transmitted / n_incident. */
     float3 n = cos_o >= 0.0f ? ns : -ns;
     float cos_i = fabs(cos_o);
@@ -117,7 +117,7 @@ GC_FUNC GcWhittedSpecular gc_whitted_specular(GcMaterial m, float3 ns, float3 wo
     s.reflect_weight = make_float3(fr, fr, fr);
     float t = (1.0f - fr) / (eta * eta);
     s.refract_weight = make_float3(t, t, t);
-    s.refract_dir = normalize(wo * (-1.0f / eta) + n * (cos_i / eta - cos_t));
+    s.refract_dir = gc_normalize(wo * (-1.0f / eta) + n * (cos_i / eta - cos_t));
     return s;
 }
 
