@@ -45,6 +45,7 @@
 #include "gc_types.h"
 #include "gc_vecmath.h"
 #include "gc_sampling.h"
+#include "gc_pow.h"
 #include "gc_trig.h"
 
 GC_NAMESPACE_BEGIN
@@ -146,7 +147,7 @@ GC_FUNC float3 gc_phong_eval_upper(float3 kd, float3 ks, float exponent, float3 
      * symmetric in wo and wi, so the BRDF is reciprocal. */
     float3 f = kd * GC_INV_PI;
     float c = gc_dot(wi, gc_reflect_z(wo));
-    if (c > 0.0f) f = f + ks * ((exponent + 2.0f) * GC_INV_2PI * pow(c, exponent));
+    if (c > 0.0f) f = f + ks * ((exponent + 2.0f) * GC_INV_2PI * gc_pow(c, exponent));
     return f;
 }
 

@@ -73,8 +73,8 @@ GC_FUNC float gc_light_group_pmf(GcRenderParams p)
 /* Lat-long mapping (see the header comment). */
 GC_FUNC float2 gc_env_uv(float3 d)
 {
-    const float theta = acos(clamp(d.y, -1.0f, 1.0f));
-    float phi = atan2(d.x, -d.z);
+    const float theta = gc_acos(clamp(d.y, -1.0f, 1.0f));
+    float phi = gc_atan2(d.x, -d.z);
     if (phi < 0.0f) phi += 2.0f * GC_PI;
     return make_float2(phi * GC_INV_2PI, theta * GC_INV_PI);
 }

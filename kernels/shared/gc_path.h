@@ -45,10 +45,10 @@ GC_FUNC bool gc_emits_toward(GcMaterial m, float cos_out)
 /* Density, per unit solid angle at the receiving point, with which next-event estimation
  * samples a point on an emissive triangle: selection (area * luminance / total power)
  * times uniform area sampling (1 / area), converted by distance^2 / cos. */
-GC_FUNC float gc_light_pdf_w(float3 emission, float emitter_power, float distance, float cos_light)
+GC_FUNC float gc_light_pdf_w(float3 emission, float emitter_power, float dist, float cos_light)
 {
     const float pdf_area = gc_emitter_luminance(emission) / emitter_power;
-    return pdf_area * distance * distance / fabs(cos_light);
+    return pdf_area * dist * dist / fabs(cos_light);
 }
 
 /* A fresh path for `sample` of `pixel`: unit throughput, no radiance yet (w, the product of

@@ -12,6 +12,7 @@
 
 #include "gc_platform.h"
 #include "gc_frame.h"
+#include "gc_pow.h"
 #include "gc_trig.h"
 
 GC_NAMESPACE_BEGIN
@@ -98,14 +99,14 @@ GC_FUNC float3 gc_sample_uniform_triangle(float u0, float u1)
 GC_FUNC float gc_phong_lobe_pdf(float cos_alpha, float exponent)
 {
     if (cos_alpha <= 0.0f) return 0.0f;
-    return (exponent + 1.0f) * GC_INV_2PI * pow(cos_alpha, exponent);
+    return (exponent + 1.0f) * GC_INV_2PI * gc_pow(cos_alpha, exponent);
 }
 
 /* Direction distributed as gc_phong_lobe_pdf around the unit vector `axis`. It may point
  * below any surface the axis sits on; callers reject such samples. */
 GC_FUNC float3 gc_sample_phong_lobe(float3 axis, float exponent, float u0, float u1)
 {
-    float cos_a = pow(1.0f - u0, 1.0f / (exponent + 1.0f));
+    float cos_a = gc_pow(1.0f - u0, 1.0f / (exponent + 1.0f));
     float sin_a = sqrt(fmax(0.0f, 1.0f - cos_a * cos_a));
     const float2 cs = gc_cos_sin_turns(u1);
     float3 d = make_float3(sin_a * cs.x, sin_a * cs.y, cos_a);

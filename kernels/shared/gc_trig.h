@@ -1,6 +1,6 @@
 /*
- * gc_trig.h — sine and cosine for the samplers, as short polynomials instead of the
- * platform's sin/cos.
+ * gc_trig.h — sine and cosine for the samplers, and the arc tangent and arc cosine of the
+ * environment map's lookup, as short polynomials instead of the platform's functions.
  *
  * Why: every angle a sampler needs is either in [-pi/4, pi/4] already (the concentric disk
  * map) or a fraction of a turn (phi = 2 pi u), which reduces to that interval exactly. The
@@ -15,6 +15,12 @@
  * 0.77 ulp, cosine within 1.23 ulp. The coefficients are a minimax fit (Lawson's iteration on
  * relative error) made for this file: sin x = x + x^3 P(x^2), cos x = 1 - x^2/2 + x^4 Q(x^2),
  * P and Q of degree 2.
+ *
+ * The arc tangent reduces its argument to [0, 1] (swapping y and x), then to
+ * |z| <= tan(pi/8) (atan t = pi/4 + atan((t - 1) / (t + 1))), then halves the angle once
+ * (atan z = 2 atan(z / (1 + sqrt(1 + z^2))), |z| <= 0.199) and sums the Taylor series to z^11
+ * (next term below 4e-10 of the result): + * / and sqrt only, all correctly rounded, so it
+ * too gives the same bits everywhere; trig_test.cpp measures it.
  *
  * Shared dialect (gc_platform.h): OpenCL C 1.2, C++20 (gc::dev) and GLSL 4.50.
  */
@@ -47,6 +53,38 @@ GC_FUNC float2 gc_cos_sin_turns(float t)
     if (quadrant == 2u) return make_float2(-cs.x, -cs.y);
     return make_float2(cs.y, -cs.x);
 }
+
+/* atan t for t in [0, 1]. */
+GC_FUNC float gc_atan_unit(float t)
+{
+    float base = 0.0f;
+    if (t > 0.414213562f) {
+        t = (t - 1.0f) / (t + 1.0f);
+        base = 0.785398163f; /* pi / 4 */
+    }
+    const float z = t / (1.0f + sqrt(1.0f + t * t));
+    const float z2 = z * z;
+    const float series =
+        z * (1.0f + z2 * (-0.333333333f + z2 * (0.2f + z2 * (-0.142857143f + z2 * (0.111111111f + z2 * -0.0909090909f)))));
+    return base + 2.0f * series;
+}
+
+/* The angle of (x, y) in (-pi, pi], as atan2(y, x); 0 for (0, 0). */
+GC_FUNC float gc_atan2(float y, float x)
+{
+    const float ax = fabs(x);
+    const float ay = fabs(y);
+    const float hi = fmax(ax, ay);
+    if (!(hi > 0.0f)) return 0.0f;
+    float a = gc_atan_unit(fmin(ax, ay) / hi);
+    if (ay > ax) a = 1.57079633f - a; /* pi / 2 */
+    if (x < 0.0f) a = GC_PI - a;
+    return y < 0.0f ? -a : a;
+}
+
+/* acos x for x in [-1, 1], as the angle of (x, sqrt(1 - x^2)); (1 - x)(1 + x) keeps the
+ * sine's precision near |x| = 1. */
+GC_FUNC float gc_acos(float x) { return gc_atan2(sqrt((1.0f - x) * (1.0f + x)), x); }
 
 GC_NAMESPACE_END
 
