@@ -126,9 +126,8 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
  * bary = (u, v) of v1 and v2. The tangent is the file's per-vertex one interpolated, else the
  * host's per-triangle one (gc_triangle_tangent); it is re-orthogonalised against the
  * interpolated normal ns here (Gram-Schmidt), B = w * cross(ns, T). A perturbed normal that
- * would face away from the geometric side (a texel at the grazing limit) keeps ns. */
-GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns, float3 ng,
-                               float2 uv)
+ * would face away from ns's side (a texel at the grazing limit) keeps ns. */
+GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns, float2 uv)
 {
     GC_SHADE_UNUSED();
     if (GC_USE_NORMAL_MAPS == 0 || m.normal_texture == GC_INVALID) return ns;
@@ -147,7 +146,7 @@ GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs 
     const float n_len = gc_length(n);
     if (!(n_len > 1.0e-6f)) return ns;
     const float3 nn = n * (1.0f / n_len);
-    return gc_dot(nn, ng) > 0.0f ? nn : ns;
+    return gc_dot(nn, ns) > 0.0f ? nn : ns;
 }
 
 /* Texture coordinates at barycentrics b = (b0, b1, b2) of the triangle's corners. */
@@ -357,7 +356,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
 
     const float3 albedo = GC_XYZ(base);
     const GcFrame frame =
-        gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.ng, s.uv));
+        gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv));
     const float3 wo = gc_frame_to_local(frame, wo_world);
 
     /* Next-event estimation: one point on one light (gc_sample_light). */

@@ -147,13 +147,13 @@ TEST(MaterialEval, NormalMapTangentSpace)
     const float3 n = make_float3(0, 0, 1);
     // No texture: unchanged. Flat texel (128, 128, 255): ~unchanged.
     EXPECT_EQ(gc_shade_normal(s.attribs.data(), s.materials.data(), nullptr, nullptr, nullptr, nullptr, nullptr,
-                              nullptr, nullptr, m, a, make_float2(0.3f, 0.3f), n, n, make_float2(0.3f, 0.3f)),
+                              nullptr, nullptr, m, a, make_float2(0.3f, 0.3f), n, make_float2(0.3f, 0.3f)),
               n);
     s.materials[0].normal_texture = s.add_texture(rgba(128, 128, 255), false);
     auto mapped = [&](std::uint32_t texel) {
         s.texel_data[0] = texel;
         return gc_shade_normal(s.attribs.data(), s.materials.data(), s.textures.data(), s.texel_data.data(), nullptr,
-                               nullptr, nullptr, nullptr, nullptr, s.materials[0], a, make_float2(0.3f, 0.3f), n, n,
+                               nullptr, nullptr, nullptr, nullptr, s.materials[0], a, make_float2(0.3f, 0.3f), n,
                                make_float2(0.3f, 0.3f));
     };
     const float3 flat = mapped(rgba(128, 128, 255));

@@ -148,7 +148,7 @@ struct NormalMap {
         const float3 ns(0, 0, 1);
         const float3 n = dev::gc_shade_normal(attribs.data(), materials.data(), textures.data(), texels.data(), nullptr,
                                               nullptr, nullptr, nullptr, nullptr, materials[0], attribs[0],
-                                              dev::make_float2(0.3f, 0.3f), ns, ns, dev::make_float2(0.0f, 0.0f));
+                                              dev::make_float2(0.3f, 0.3f), ns, dev::make_float2(0.0f, 0.0f));
         return {n.x, n.y, n.z};
     }
 };

@@ -249,7 +249,8 @@ TEST_F(ReferenceTest, DetectsATenPercentAlbedoChange)
 INSTANTIATE_TEST_SUITE_P(Refs, ReferenceTest,
                          ::testing::Values(RefCase{"cornell-original", 128}, RefCase{"cornell-mirror", 128},
                                            RefCase{"cornell-sphere", 128}, RefCase{"bunny-env", 128},
-                                           RefCase{"box-textured", 256, true}),
+                                           RefCase{"box-textured", 256, true}, RefCase{"normals-bent", 128},
+                                           RefCase{"normals-flipped-glass", 256}),
                          [](const ::testing::TestParamInfo<RefCase>& param_info) {
                              std::string name = param_info.param.name;
                              for (char& ch : name)
