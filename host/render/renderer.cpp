@@ -235,7 +235,7 @@ void Renderer::run_aov_batch()
 // [whitted hook] One work-item per pixel of the batch, like run_aov_batch.
 void Renderer::run_whitted_batch()
 {
-    m_whitted.set_args(m_params, m_scene.bvh_args(), m_scene.emitters, m_scene.point_lights, m_film);
+    m_whitted.set_args(m_params, m_scene.scene_args(), m_film);
     m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
 }
 
