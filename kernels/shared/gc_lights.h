@@ -70,11 +70,12 @@ GC_FUNC float gc_light_group_pmf(GcRenderParams p)
     return groups > 0u ? 1.0f / gc_float(groups) : 0.0f;
 }
 
-/* Lat-long mapping (see the header comment). */
+/* Lat-long mapping (see the header comment). theta = acos(y), as atan2 of sin and cos: gc_atan2
+ * gives every device the same bits (gc_trig.h). */
 GC_FUNC float2 gc_env_uv(float3 d)
 {
-    const float theta = acos(clamp(d.y, -1.0f, 1.0f));
-    float phi = atan2(d.x, -d.z);
+    const float theta = gc_atan2(sqrt(d.x * d.x + d.z * d.z), d.y);
+    float phi = gc_atan2(d.x, -d.z);
     if (phi < 0.0f) phi += 2.0f * GC_PI;
     return make_float2(phi * GC_INV_2PI, theta * GC_INV_PI);
 }

@@ -1,6 +1,6 @@
 /*
- * gc_trig.h — sine and cosine for the samplers, as short polynomials instead of the
- * platform's sin/cos.
+ * gc_trig.h — sine and cosine for the samplers, and atan2 for the environment map, as short
+ * polynomials instead of the platform's functions.
  *
  * Why: every angle a sampler needs is either in [-pi/4, pi/4] already (the concentric disk
  * map) or a fraction of a turn (phi = 2 pi u), which reduces to that interval exactly. The
@@ -46,6 +46,34 @@ GC_FUNC float2 gc_cos_sin_turns(float t)
     if (quadrant == 1u) return make_float2(-cs.y, cs.x);
     if (quadrant == 2u) return make_float2(-cs.x, -cs.y);
     return make_float2(cs.y, -cs.x);
+}
+
+/* atan2(y, x) in [-pi, pi], for the environment map's lat-long lookup (gc_lights.h), from +, *
+ * and one division (correctly rounded on every device: the OpenCL programs ask for it, GLSL
+ * and C++ have it), so the OpenCL kernels and the Vulkan reference pick the same texel and
+ * density: the platforms' atan2 and acos differ by an ulp or two, and near texel edges that
+ * was a different texel. The smaller magnitude over the larger, a in [0, 1], is reduced to
+ * |a| <= tan(pi/8) by atan(a) = pi/4 + atan((a - 1) / (a + 1)); there a + a^3 P(a^2) is
+ * Cephes' atanf polynomial (relative error below 2e-7; tests/bsdf/trig_test.cpp measures the
+ * whole function against double). Then atan(lo/hi) becomes the angle by the octant. Signed
+ * zeros are not told apart: atan2(+-0, x) is 0 for x >= 0 and pi for x < 0. */
+GC_FUNC float gc_atan2(float y, float x)
+{
+    const float ax = fabs(x);
+    const float ay = fabs(y);
+    const float hi = fmax(ax, ay);
+    if (!(hi > 0.0f)) return 0.0f;
+    float a = fmin(ax, ay) / hi;
+    float r = 0.0f;
+    if (a > 0.414213562f) {
+        a = (a - 1.0f) / (a + 1.0f);
+        r = 0.25f * GC_PI;
+    }
+    const float z = a * a;
+    r += a + a * z * (-0.333329491539f + z * (0.199777106478f + z * (-0.138776856032f + z * 0.0805374449538f)));
+    if (ay > ax) r = 0.5f * GC_PI - r;
+    if (x < 0.0f) r = GC_PI - r;
+    return y < 0.0f ? -r : r;
 }
 
 GC_NAMESPACE_END

@@ -1,4 +1,5 @@
-// gc_trig.h: the samplers' polynomial sine and cosine against double-precision std::sin/cos.
+// gc_trig.h: the samplers' polynomial sine and cosine, and the environment map's atan2, against
+// double-precision std::sin/cos/atan2.
 // The quarter-turn kernel is checked in ulps of the true value over a dense grid of
 // [-pi/4, pi/4]; the turn-based form over [0, 1] in absolute error, because its argument
 // 2 pi t is itself rounded (an angle's error, not a relative one, is what moves a direction).
@@ -65,6 +66,29 @@ TEST(Trig, TurnsMatchSinCosOfTwoPiT)
     EXPECT_EQ(gc_cos_sin_turns(0.5f), float2(-1.0f, -0.0f));
     EXPECT_EQ(gc_cos_sin_turns(0.75f), float2(0.0f, -1.0f));
     EXPECT_EQ(gc_cos_sin_turns(1.0f), float2(1.0f, 0.0f));
+}
+
+TEST(Trig, Atan2MatchesDoublePrecision)
+{
+    // Points on circles of several radii, every octant and both sides of each octant's edge,
+    // against std::atan2 of the same floats in double.
+    constexpr int kSteps = 1 << 20;
+    double worst = 0.0;
+    for (const double radius : {1.0, 3.5e-3, 7.25e4}) {
+        for (int k = 0; k <= kSteps; ++k) {
+            const double angle = 2.0 * kPi * k / kSteps - kPi;
+            const float y = static_cast<float>(radius * std::sin(angle));
+            const float x = static_cast<float>(radius * std::cos(angle));
+            worst = std::fmax(worst, std::fabs(gc_atan2(y, x) - std::atan2(static_cast<double>(y), static_cast<double>(x))));
+        }
+    }
+    std::printf("[trig] atan2, %d points on 3 circles: |error| <= %.3g (limit 5e-7)\n", 3 * (kSteps + 1), worst);
+    EXPECT_LE(worst, 5e-7);
+    EXPECT_EQ(gc_atan2(0.0f, 1.0f), 0.0f);
+    EXPECT_EQ(gc_atan2(0.0f, 0.0f), 0.0f);
+    EXPECT_FLOAT_EQ(gc_atan2(1.0f, 0.0f), 0.5f * GC_PI);
+    EXPECT_FLOAT_EQ(gc_atan2(0.0f, -1.0f), GC_PI);
+    EXPECT_FLOAT_EQ(gc_atan2(-1.0f, -1.0f), -0.75f * GC_PI);
 }
 
 }  // namespace
