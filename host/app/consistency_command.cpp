@@ -19,7 +19,6 @@
 #include "host/image/compare.h"
 #include "host/image/image_io.h"
 #include "host/render/renderer.h"
-#include "host/render/scene_convert.h"
 #include "host/scene/camera_framing.h"
 #include "host/scene/load.h"
 #include "host/util/log.h"
@@ -48,17 +47,13 @@ Film render_all(R& renderer, std::uint32_t spp, double& seconds)
     return renderer.film();
 }
 
-// The Vulkan column: the compute reference (kernels/vk/path.comp and aov.comp), which runs the
-// same shared shading code as the OpenCL kernels. Appends a render, or a note saying why there
-// is none; a build without Vulkan notes nothing.
+// The Vulkan column: the compute reference (kernels/vk/path.comp, whitted.comp, aov.comp),
+// which runs the same shared shading code as the OpenCL kernels. Appends a render, or a note
+// saying why there is none; a build without Vulkan notes nothing.
 void add_vulkan_render(const Options& options, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
                        const RenderSettings& settings, ConsistencyRun& run)
 {
 #ifdef GC_HAVE_VULKAN
-    if (settings.integrator == IntegratorKind::Whitted) {
-        run.notes.push_back("Vulkan: left out (the Vulkan compute reference has no Whitted integrator)");
-        return;
-    }
     std::unique_ptr<vk::Context> context;
     try {
         context = std::make_unique<vk::Context>(options.vk_device);
@@ -141,11 +136,10 @@ ExitCode run_consistency(const Options& options)
     run.height = static_cast<std::uint32_t>(settings.height);
     run.spp = settings.spp;
     run.seed = settings.seed;
-    // Radiance needs light: as --cross-check does, a scene without emitters gets a white sky.
-    if (settings.integrator == IntegratorKind::Path && make_emitters(scene).empty() &&
-        settings.env_radiance == glm::vec3(0.0f)) {
+    // Radiance needs light: as --cross-check does, a scene that nothing lights gets a white sky.
+    if (settings.integrator != IntegratorKind::Aov && !has_light(scene, settings)) {
         settings.env_radiance = glm::vec3(1.0f);
-        run.notes.push_back("the scene has no emitters: rendered with --env 1,1,1");
+        run.notes.push_back("nothing lights the scene: rendered with --env 1,1,1");
     }
 
     std::string why_none;

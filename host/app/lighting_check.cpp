@@ -21,10 +21,14 @@ bool environment_lights(const RenderSettings& settings)
 
 }  // namespace
 
+bool has_light(const Scene& scene, const RenderSettings& settings)
+{
+    return any_emissive_triangle(scene) || !scene.point_lights.empty() || environment_lights(settings);
+}
+
 std::optional<std::string> unlit_scene_warning(const Scene& scene, const RenderSettings& settings)
 {
-    if (settings.integrator == IntegratorKind::Aov) return std::nullopt;
-    if (any_emissive_triangle(scene) || !scene.point_lights.empty() || environment_lights(settings)) return std::nullopt;
+    if (settings.integrator == IntegratorKind::Aov || has_light(scene, settings)) return std::nullopt;
     return scene.source_path +
            ": nothing lights this scene (no emissive material, no point light) and the environment is black, so the "
            "image will be black; light it with --env R,G,B or --env FILE";

@@ -11,6 +11,10 @@
 
 namespace gc {
 
+// Whether anything lights `scene` under `settings`: an emissive triangle, a point light, an
+// environment map or a non-zero --env.
+bool has_light(const Scene& scene, const RenderSettings& settings);
+
 // The warning for a render that can only come out black, or nothing when something lights
 // it: an emissive triangle, a point light, an environment map or a non-zero --env. The AOV
 // integrator needs no light.

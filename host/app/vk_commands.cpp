@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "host/app/lighting_check.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
-#include "host/render/scene_convert.h"
 #include "host/scene/camera_framing.h"
 #include "host/scene/load.h"
 #include "host/util/log.h"
@@ -82,11 +82,10 @@ ExitCode run_cross_check(const Options& options)
     if (!options.res_given) settings.width = settings.height = 128;
     const Scene scene = load(options);
     const Camera camera = camera_for(scene, options);
-    // Radiance needs light: a scene without emitters is lit by a white environment unless
-    // --env says otherwise.
-    if (make_emitters(scene).empty() && settings.env_radiance == glm::vec3(0.0f)) {
+    // Radiance needs light: a scene that nothing lights gets a white environment.
+    if (!has_light(scene, settings)) {
         settings.env_radiance = glm::vec3(1.0f);
-        log_info("the scene has no emitters: the radiance check uses --env 1,1,1");
+        log_info("nothing lights the scene: the radiance checks use --env 1,1,1");
     }
     const FlatBvh bvh = build_bvh(scene);
     const cl::DeviceInfo device = cl::select_device(options.device);

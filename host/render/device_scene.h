@@ -51,7 +51,7 @@ struct DeviceScene {
     {
         return std::tie(point_lights, env_pixels, env_marginal, env_conditional);
     }
-    auto bvh_args() const  // GC_BVH_PARAMS as gc_alpha.h widens it (extend, shadow, whitted)
+    auto bvh_args() const  // GC_BVH_PARAMS as gc_alpha.h widens it (extend, shadow)
     {
         return std::tuple_cat(std::make_tuple(bvh.nodes(), bvh.triangles()), alpha_args());
     }
@@ -59,7 +59,7 @@ struct DeviceScene {
     {
         return std::tuple_cat(alpha_args(), std::tie(emitters), lights_args());
     }
-    auto scene_args() const  // GC_SCENE_PARAMS (path_megakernel, aov_render)
+    auto scene_args() const  // GC_SCENE_PARAMS (path_megakernel, aov_render, whitted_render)
     {
         return std::tuple_cat(bvh_args(), std::tie(emitters), lights_args());
     }

@@ -68,4 +68,9 @@ EnvironmentMap load_environment_map(const std::filesystem::path& path)
     return make_environment_map(image);
 }
 
+EnvironmentMap load_environment_map(const RenderSettings& settings)
+{
+    return settings.env_map_path.empty() ? EnvironmentMap{} : load_environment_map(settings.env_map_path);
+}
+
 }  // namespace gc

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "host/image/film.h"
+#include "host/render/render_settings.h"
 
 namespace gc {
 
@@ -30,5 +31,8 @@ EnvironmentMap make_environment_map(const Film& image);
 // Reads a lat-long map (.exr, .hdr, .pfm, ...): InputError naming the file on failure or on
 // non-finite or negative texels.
 EnvironmentMap load_environment_map(const std::filesystem::path& path);
+
+// The map --env names (settings.env_map_path), or an empty one when it names none.
+EnvironmentMap load_environment_map(const RenderSettings& settings);
 
 }  // namespace gc

@@ -110,9 +110,7 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
                    const RenderSettings& settings)
     : m_context(context),
       m_settings(settings),
-      m_scene(DeviceScene::upload(context, scene, bvh,
-                                  settings.env_map_path.empty() ? EnvironmentMap{}
-                                                                : load_environment_map(settings.env_map_path))),
+      m_scene(DeviceScene::upload(context, scene, bvh, load_environment_map(settings))),
       m_megakernel(settings.integrator == IntegratorKind::Path && path_megakernel_for(context.device())),
       m_program(context, integrator_program(settings.integrator, m_megakernel),
                 program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features)),
@@ -139,12 +137,7 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     m_path_capacity = static_cast<std::uint32_t>(std::max<std::uint64_t>(m_batch, std::min<std::uint64_t>(wavefront, wanted)));
 
     m_params = make_render_params(scene, camera, settings);
-    if (!settings.env_map_path.empty()) {
-        // The map's texels are the radiance; env_radiance scales them (1 unless given).
-        m_params.env_width = m_scene.env_width;
-        m_params.env_height = m_scene.env_height;
-        if (m_params.env_width == 0) m_params.env_radiance = glm::vec4(0.0f);  // a black map
-    }
+    set_environment_map(m_params, settings, m_scene.env_width, m_scene.env_height);
 
     m_film = cl::Buffer<glm::vec4>::create(context, pixels, CL_MEM_READ_WRITE, "film");
     const glm::vec4 zero(0.0f);
@@ -235,7 +228,7 @@ void Renderer::run_aov_batch()
 // [whitted hook] One work-item per pixel of the batch, like run_aov_batch.
 void Renderer::run_whitted_batch()
 {
-    m_whitted.set_args(m_params, m_scene.bvh_args(), m_scene.emitters, m_scene.point_lights, m_film);
+    m_whitted.set_args(m_params, m_scene.scene_args(), m_film);
     m_whitted.launch(m_context, m_params.pixel_count, 0, "Whitted ray trees");
 }
 

@@ -278,6 +278,15 @@ dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera,
     return p;
 }
 
+void set_environment_map(dev::GcRenderParams& params, const RenderSettings& settings, std::uint32_t width,
+                         std::uint32_t height)
+{
+    if (settings.env_map_path.empty()) return;
+    params.env_width = width;
+    params.env_height = height;
+    if (width == 0) params.env_radiance = glm::vec4(0.0f);
+}
+
 dev::GcCamera make_camera(const Camera& camera, int width, int height)
 {
     const Vec3 forward = normalize(camera.look_at - camera.look_from);

@@ -39,6 +39,13 @@ float total_emitter_power(const Scene& scene);
 // (pixel_offset/pixel_count) and sample_index per pass. Shared by the OpenCL and Vulkan paths.
 dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera, const RenderSettings& settings);
 
+// Points `params` at the environment map of settings.env_map_path, uploaded as width x height
+// texels: the texels are then the radiance and env_radiance scales them (1 unless
+// --env-scale), and a black map (uploaded as 0 x 0) leaves the environment black. Without a
+// map `params` keeps the constant env_radiance.
+void set_environment_map(dev::GcRenderParams& params, const RenderSettings& settings, std::uint32_t width,
+                         std::uint32_t height);
+
 // Pinhole camera for a width x height image (square pixels, vertical field of view).
 dev::GcCamera make_camera(const Camera& camera, int width, int height);
 

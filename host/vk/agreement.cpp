@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <glm/glm.hpp>
@@ -121,6 +122,7 @@ RadianceAgreement compare_radiance(const Film& ref, const Film& test, double tol
     double sq_sum = 0.0;
     double ref_sum = 0.0;
     std::size_t within = 0;
+    std::size_t identical = 0;
     for (std::uint32_t y = 0; y < ref.height(); ++y)
         for (std::uint32_t x = 0; x < ref.width(); ++x) {
             const float* a = ref.pixel(x, y);
@@ -145,10 +147,12 @@ RadianceAgreement compare_radiance(const Film& ref, const Film& test, double tol
                 ok = false;
             }
             if (ok) ++within;
+            if (std::memcmp(a, b, 3 * sizeof(float)) == 0) ++identical;
         }
     r.rel_mse = sq_sum / (3.0 * double(n));
     if (r.non_finite > 0) r.rel_mse = std::numeric_limits<double>::infinity();
     r.within = double(within) / double(n);
+    r.identical = double(identical) / double(n);
     r.ref_mean = ref_sum / (3.0 * double(n));
     return r;
 }

@@ -63,6 +63,7 @@ struct RadianceAgreement {
     double within = 1.0;
     double tolerance = 1e-3;
     double max_rel_error = 0.0; // largest |test - ref| / max(|test|, |ref|) over channels
+    double identical = 1.0;     // fraction of pixels whose RGB are the same bits in both
     std::size_t non_finite = 0;  // pixels with a NaN or infinity in either image (counted as outside)
     double ref_mean = 0.0;       // mean of the reference's RGB: a black comparison proves nothing
 };

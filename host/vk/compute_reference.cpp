@@ -1,5 +1,7 @@
 #include "host/vk/compute_reference.h"
 
+#include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -9,25 +11,42 @@
 #include "kernels/vk/bindings.h"
 
 namespace gc::vk {
+namespace {
+
+SceneBuffers upload_for_tracing(const Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+                                const RenderSettings& settings)
+{
+    const EnvironmentMap environment = load_environment_map(settings);
+    return SceneBuffers::upload(context, scene, &bvh, camera, settings, &environment);
+}
+
+std::span<const std::uint32_t> shader_for(IntegratorKind integrator)
+{
+    switch (integrator) {
+    case IntegratorKind::Path: return shaders::path_comp();
+    case IntegratorKind::Whitted: return shaders::whitted_comp();
+    case IntegratorKind::Aov: return shaders::aov_comp();
+    }
+    throw UsageError(std::string("the Vulkan compute reference has no ") + integrator_name(integrator) + " integrator");
+}
+
+}  // namespace
 
 ComputeReference::ComputeReference(const Context& context, const Scene& scene, const FlatBvh& bvh,
                                    const Camera& camera, const RenderSettings& settings)
     : m_context(context),
       m_width(static_cast<std::uint32_t>(settings.width)),
       m_height(static_cast<std::uint32_t>(settings.height)),
-      m_scene(SceneBuffers::upload(context, scene, &bvh, camera, settings)),
+      m_scene(upload_for_tracing(context, scene, bvh, camera, settings)),
       m_film(context, VkDeviceSize(m_width) * m_height * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "film"),
       m_set(context, GC_VK_BINDING_COUNT, VK_SHADER_STAGE_COMPUTE_BIT)
 {
-    if (settings.integrator == IntegratorKind::Whitted)
-        throw UsageError("the Vulkan compute reference has no whitted integrator (use path or aov)");
     m_film.fill_zero();
     m_scene.bind(m_set);
     m_set.bind(GC_VK_BINDING_FILM, m_film);
     m_layout = make_pipeline_layout(context, m_set, sizeof(std::uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
-    const bool path = settings.integrator == IntegratorKind::Path;
-    m_pipeline = make_compute_pipeline(context, m_layout.get(), path ? shaders::path_comp() : shaders::aov_comp(),
-                                       path ? "path.comp" : "aov.comp");
+    m_pipeline = make_compute_pipeline(context, m_layout.get(), shader_for(settings.integrator),
+                                       std::string(integrator_name(settings.integrator)) + ".comp");
 }
 
 void ComputeReference::render_sample()

@@ -1,7 +1,8 @@
 // The Vulkan compute reference of the OpenCL integrators: GLSL compute shaders traverse the
 // same flat BVH and call the same shared shading code (kernels/shared/gc_path_vertex.h,
-// gc_aov.h) with the same random-number keying, one pixel per invocation and one sample
-// per dispatch. Same interface as the OpenCL Renderer, so a cross-check drives both alike.
+// gc_whitted_tree.h, gc_aov.h) with the same random-number keying, one pixel per invocation
+// and one sample per dispatch. Same interface as the OpenCL Renderer, so a cross-check drives
+// both alike.
 #pragma once
 
 #include <cstdint>
@@ -20,9 +21,9 @@ namespace gc::vk {
 
 class ComputeReference {
 public:
-    // settings.integrator: Path (path.comp) or Aov (aov.comp, settings.aov). Whitted is a
-    // UsageError until the OpenCL side has it. settings.wavefront_size is ignored: a
-    // megakernel holds no per-path queues.
+    // settings.integrator: Path (path.comp), Whitted (whitted.comp) or Aov (aov.comp,
+    // settings.aov); settings.env_map_path is loaded as the OpenCL renderer loads it.
+    // settings.wavefront_size is ignored: a megakernel holds no per-path queues.
     ComputeReference(const Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
                      const RenderSettings& settings);
 

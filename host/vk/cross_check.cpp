@@ -57,14 +57,46 @@ std::string num(const char* format, double value)
     return buffer;
 }
 
+bool radiance_passed(const RadianceAgreement& r, const Tolerances& tol)
+{
+    return r.rel_mse <= tol.max_rel_mse && r.within >= tol.min_within && r.ref_mean > 0.0;
+}
+
+std::string radiance_lines(const std::string& integrator, const RadianceAgreement& r, const Tolerances& tol)
+{
+    std::string s;
+    s += line((integrator + " radiance rel MSE").c_str(), num("%.3g", r.rel_mse), r.rel_mse <= tol.max_rel_mse);
+    s += line((integrator + " radiance pixels within 1e-3 relative").c_str(), num("%.3f %%", 100.0 * r.within),
+              r.within >= tol.min_within);
+    s += line("  bit-identical pixels", num("%.3f %%", 100.0 * r.identical), true);
+    s += line("  max rel error", num("%.3g", r.max_rel_error), true);
+    s += line("  mean OpenCL radiance (must not be black)", num("%.4g", r.ref_mean), r.ref_mean > 0.0);
+    return s;
+}
+
+// Renders `integrator` with both APIs at settings.spp and compares the radiance.
+RadianceAgreement compare_integrator(const cl::Context& cl_context, const Context& vk_context, const Scene& scene,
+                                     const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings,
+                                     IntegratorKind integrator, double& cl_seconds_per_spp, double& vk_seconds_per_spp)
+{
+    RenderSettings s = settings;
+    s.integrator = integrator;
+    double cl_seconds = 0.0, vk_seconds = 0.0;
+    const Film cl_film = render_cl(cl_context, scene, bvh, camera, s, settings.spp, &cl_seconds);
+    const Film vk_film = render_vk(vk_context, scene, bvh, camera, s, settings.spp, &vk_seconds);
+    cl_seconds_per_spp = cl_seconds / settings.spp;
+    vk_seconds_per_spp = vk_seconds / settings.spp;
+    return compare_radiance(cl_film, vk_film);
+}
+
 }  // namespace
 
 bool CrossCheckReport::passed(const Tolerances& tol) const
 {
     return raster.id_agreement >= tol.min_id_agreement && raster.max_depth_rel_error <= tol.max_depth_rel_error &&
            compute_aov.id_agreement >= tol.min_id_agreement &&
-           compute_aov.max_depth_rel_error <= tol.max_depth_rel_error && radiance.rel_mse <= tol.max_rel_mse &&
-           radiance.within >= tol.min_within && radiance.ref_mean > 0.0;
+           compute_aov.max_depth_rel_error <= tol.max_depth_rel_error && radiance_passed(path, tol) &&
+           radiance_passed(whitted, tol);
 }
 
 std::string CrossCheckReport::format(const Tolerances& tol) const
@@ -84,14 +116,12 @@ std::string CrossCheckReport::format(const Tolerances& tol) const
               compute_aov.id_agreement >= tol.min_id_agreement);
     s += line("compute depth max rel error (equal ids)", num("%.3g", compute_aov.max_depth_rel_error),
               compute_aov.max_depth_rel_error <= tol.max_depth_rel_error);
-    s += line("radiance rel MSE", num("%.3g", radiance.rel_mse), radiance.rel_mse <= tol.max_rel_mse);
-    s += line("radiance pixels within 1e-3 relative", num("%.3f %%", 100.0 * radiance.within),
-              radiance.within >= tol.min_within);
-    s += line("  max rel error", num("%.3g", radiance.max_rel_error), true);
-    s += line("  mean OpenCL radiance (must not be black)", num("%.4g", radiance.ref_mean), radiance.ref_mean > 0.0);
-    s += "  time: Vulkan raster " + num("%.3f", raster_seconds) + " s/frame, Vulkan compute path " +
-         num("%.3f", vk_path_seconds_per_spp) + " s/spp, OpenCL path " + num("%.3f", cl_path_seconds_per_spp) +
-         " s/spp\n";
+    s += radiance_lines("path", path, tol);
+    s += radiance_lines("whitted", whitted, tol);
+    s += "  time: Vulkan raster " + num("%.3f", raster_seconds) + " s/frame; s/spp Vulkan compute path " +
+         num("%.3f", vk_path_seconds_per_spp) + ", OpenCL path " + num("%.3f", cl_path_seconds_per_spp) +
+         ", Vulkan compute whitted " + num("%.3f", vk_whitted_seconds_per_spp) + ", OpenCL whitted " +
+         num("%.3f", cl_whitted_seconds_per_spp) + "\n";
     return s;
 }
 
@@ -123,14 +153,10 @@ CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_co
     // The compute reference runs the OpenCL traversal code itself: no pixel is excused.
     report.compute_aov = compare_ids_depth(cl_ids, cl_depth, vk_ids, vk_depth, {});
 
-    RenderSettings path_settings = settings;
-    path_settings.integrator = IntegratorKind::Path;
-    double cl_seconds = 0.0, vk_seconds = 0.0;
-    const Film cl_film = render_cl(cl_context, scene, bvh, camera, path_settings, settings.spp, &cl_seconds);
-    const Film vk_film = render_vk(vk_context, scene, bvh, camera, path_settings, settings.spp, &vk_seconds);
-    report.cl_path_seconds_per_spp = cl_seconds / settings.spp;
-    report.vk_path_seconds_per_spp = vk_seconds / settings.spp;
-    report.radiance = compare_radiance(cl_film, vk_film);
+    report.path = compare_integrator(cl_context, vk_context, scene, bvh, camera, settings, IntegratorKind::Path,
+                                     report.cl_path_seconds_per_spp, report.vk_path_seconds_per_spp);
+    report.whitted = compare_integrator(cl_context, vk_context, scene, bvh, camera, settings, IntegratorKind::Whitted,
+                                        report.cl_whitted_seconds_per_spp, report.vk_whitted_seconds_per_spp);
     return report;
 }
 

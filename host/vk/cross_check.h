@@ -3,7 +3,8 @@
 // far apart they are.
 //   - raster primitive id and depth (Vulkan mesh pass) vs the OpenCL ray-cast AOVs;
 //   - the same for the Vulkan compute AOVs (same traversal code: should agree everywhere);
-//   - Vulkan compute path-traced radiance vs the OpenCL wavefront path tracer.
+//   - Vulkan compute radiance vs OpenCL radiance, for each integrator that makes light: the
+//     path tracer and the Whitted ray tracer.
 #pragma once
 
 #include <cstdint>
@@ -24,18 +25,21 @@ struct CrossCheckReport {
     std::uint32_t spp = 0;
     IdDepthAgreement raster;      // Vulkan raster G-buffer vs OpenCL ray-cast AOVs
     IdDepthAgreement compute_aov; // Vulkan compute AOVs vs OpenCL ray-cast AOVs
-    RadianceAgreement radiance;   // Vulkan compute path tracer vs OpenCL path tracer
+    RadianceAgreement path;       // Vulkan path.comp vs the OpenCL path tracer
+    RadianceAgreement whitted;    // Vulkan whitted.comp vs OpenCL whitted.cl
     double raster_seconds = 0.0;  // one raster frame (render + read back)
     double vk_path_seconds_per_spp = 0.0;
     double cl_path_seconds_per_spp = 0.0;
+    double vk_whitted_seconds_per_spp = 0.0;
+    double cl_whitted_seconds_per_spp = 0.0;
 
     bool passed(const Tolerances& tol = {}) const;
     // Human-readable figures, one per line, each marked ok / FAIL against `tol`.
     std::string format(const Tolerances& tol = {}) const;
 };
 
-// Renders with both APIs. settings: width, height, spp, seed, max_depth, rr_depth and
-// env_radiance are used; the integrator fields are set per pass.
+// Renders with both APIs. settings: width, height, spp, seed, max_depth, rr_depth,
+// env_radiance and env_map_path are used; the integrator fields are set per pass.
 CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_context, const Scene& scene,
                              const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings);
 

@@ -16,8 +16,10 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 }  // namespace
 
 SceneBuffers SceneBuffers::upload(const Context& context, const Scene& scene, const FlatBvh* bvh, const Camera& camera,
-                                  const RenderSettings& settings)
+                                  const RenderSettings& settings, const EnvironmentMap* environment)
 {
+    const EnvironmentMap none;
+    const EnvironmentMap& env = environment ? *environment : none;
     const DeviceTextures tex = make_textures(scene);
     std::vector<glm::vec4> positions;
     positions.reserve(scene.positions.size());
@@ -34,8 +36,13 @@ SceneBuffers SceneBuffers::upload(const Context& context, const Scene& scene, co
         Buffer::with_data(context, make_emitters(scene), kStorage, "emitters"),
         Buffer::with_data(context, positions, kStorage, "vertex positions"),
         Buffer::with_data(context, std::span<const float>(dev::gc_srgb_to_linear_table), kStorage, "sRGB table"),
+        Buffer::with_data(context, make_point_lights(scene), kStorage, "point lights"),
+        Buffer::with_data(context, env.pixels, kStorage, "environment map"),
+        Buffer::with_data(context, env.marginal_cdf, kStorage, "environment marginal cdf"),
+        Buffer::with_data(context, env.conditional_cdf, kStorage, "environment conditional cdf"),
         make_render_params(scene, camera, settings),
     };
+    if (environment) set_environment_map(b.host_params, settings, env.width, env.height);
     b.params.write(&b.host_params, sizeof b.host_params);
     return b;
 }
@@ -52,6 +59,10 @@ void SceneBuffers::bind(StorageBufferSet& set) const
     set.bind(GC_VK_BINDING_EMITTERS, emitters);
     set.bind(GC_VK_BINDING_POSITIONS, positions);
     set.bind(GC_VK_BINDING_SRGB, srgb_table);
+    set.bind(GC_VK_BINDING_POINT_LIGHTS, point_lights);
+    set.bind(GC_VK_BINDING_ENV_PIXELS, env_pixels);
+    set.bind(GC_VK_BINDING_ENV_MARGINAL, env_marginal);
+    set.bind(GC_VK_BINDING_ENV_CONDITIONAL, env_conditional);
 }
 
 }  // namespace gc::vk

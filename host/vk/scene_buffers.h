@@ -7,6 +7,7 @@
 
 #include "gc_types.h"
 #include "host/bvh/bvh.h"
+#include "host/render/environment.h"
 #include "host/render/render_settings.h"
 #include "host/scene/scene.h"
 #include "host/vk/buffer.h"
@@ -26,13 +27,19 @@ struct SceneBuffers {
     Buffer emitters;
     Buffer positions;  // three vec4 per scene triangle, for the raster pass
     Buffer srgb_table; // gc_srgb_to_linear_table, read by gc_texture.h in GLSL
+    Buffer point_lights;
+    Buffer env_pixels;      // the environment map and its sampling cdfs (host/render/environment.h)
+    Buffer env_marginal;
+    Buffer env_conditional;
 
     dev::GcRenderParams host_params{};
 
-    // `bvh` may be null for passes that trace no rays (the raster pass): the node and
-    // triangle buffers are then left empty.
+    // `bvh` and `environment` may be null for passes that trace no rays (the raster pass): the
+    // node, triangle and environment buffers are then left empty, and the parameters keep the
+    // constant env_radiance. `environment` is the map of settings.env_map_path
+    // (load_environment_map), set in the parameters as the OpenCL renderer sets it.
     static SceneBuffers upload(const Context& context, const Scene& scene, const FlatBvh* bvh, const Camera& camera,
-                               const RenderSettings& settings);
+                               const RenderSettings& settings, const EnvironmentMap* environment = nullptr);
 
     // Binds every scene buffer of `set` (all but the film).
     void bind(StorageBufferSet& set) const;

@@ -16,6 +16,9 @@ constexpr std::uint32_t kAovComp[] =
 constexpr std::uint32_t kPathComp[] =
 #include "path.comp.inc"
     ;
+constexpr std::uint32_t kWhittedComp[] =
+#include "whitted.comp.inc"
+    ;
 
 }  // namespace
 
@@ -23,5 +26,6 @@ std::span<const std::uint32_t> raster_vert() { return kRasterVert; }
 std::span<const std::uint32_t> raster_frag() { return kRasterFrag; }
 std::span<const std::uint32_t> aov_comp() { return kAovComp; }
 std::span<const std::uint32_t> path_comp() { return kPathComp; }
+std::span<const std::uint32_t> whitted_comp() { return kWhittedComp; }
 
 }  // namespace gc::vk::shaders

@@ -10,12 +10,12 @@
  * -Z, u increases toward +X), v = theta / pi from the zenith. Texel lookups are nearest, so
  * the radiance and the sampling density are constant over the same texels.
  *
- * Buffers come through macros, as in gc_traverse.h (defaults for OpenCL C and C++):
+ * Buffers come through macros, as in gc_traverse.h (defaults for OpenCL C and C++; the
+ * Vulkan reference defines them over its SSBOs in kernels/vk/scene_bindings.glsl):
  *     GC_LIGHTS_PARAMS   point lights, env pixels (float4), env marginal cdf, env conditional cdf
  *     GC_LIGHTS_ARGS / GC_POINT_LIGHT(i) / GC_ENV_PIXEL(i) / GC_ENV_MARGINAL(i) / GC_ENV_CONDITIONAL(i)
- * The Vulkan reference binds neither point lights nor an environment map yet: under GLSL,
- * unless the includer defines GC_LIGHTS_PARAMS, GC_HAS_LIGHT_BUFFERS is 0 and those groups
- * are treated as absent (a documented gap of the cross-check, not of the renderer).
+ * A GLSL includer that defines no GC_LIGHTS_PARAMS gets GC_HAS_LIGHT_BUFFERS 0: no point-light
+ * or environment-map code, those groups treated as absent.
  */
 #ifndef GC_LIGHTS_H
 #define GC_LIGHTS_H
@@ -70,10 +70,11 @@ GC_FUNC float gc_light_group_pmf(GcRenderParams p)
     return groups > 0u ? 1.0f / gc_float(groups) : 0.0f;
 }
 
-/* Lat-long mapping (see the header comment). */
+/* Lat-long mapping (see the header comment). theta = acos(y), as atan2 of sin and cos: gc_atan2
+ * gives every device the same bits (gc_trig.h). */
 GC_FUNC float2 gc_env_uv(float3 d)
 {
-    const float theta = gc_acos(clamp(d.y, -1.0f, 1.0f));
+    const float theta = gc_atan2(sqrt(d.x * d.x + d.z * d.z), d.y);
     float phi = gc_atan2(d.x, -d.z);
     if (phi < 0.0f) phi += 2.0f * GC_PI;
     return make_float2(phi * GC_INV_2PI, theta * GC_INV_PI);

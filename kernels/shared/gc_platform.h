@@ -65,8 +65,6 @@ using float4 = glm::vec4;
 using uint2 = glm::uvec2;
 using uint4 = glm::uvec4;
 
-using std::acos;
-using std::atan2;
 using std::cos;
 using std::exp;
 using std::fabs;
@@ -131,7 +129,6 @@ inline float4 fabs(float4 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs
 #define fabs abs
 #define fmin min
 #define fmax max
-#define atan2 atan
 #define gc_as_uint floatBitsToUint
 #define gc_as_float uintBitsToFloat
 #define GC_XYZ(v) ((v).xyz)

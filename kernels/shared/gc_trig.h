@@ -1,6 +1,6 @@
 /*
- * gc_trig.h — sine and cosine for the samplers, and the arc tangent and arc cosine of the
- * environment map's lookup, as short polynomials instead of the platform's functions.
+ * gc_trig.h — sine and cosine for the samplers, and the arc tangent of the environment
+ * map's lookup, as short polynomials instead of the platform's functions.
  *
  * Why: every angle a sampler needs is either in [-pi/4, pi/4] already (the concentric disk
  * map) or a fraction of a turn (phi = 2 pi u), which reduces to that interval exactly. The
@@ -81,10 +81,6 @@ GC_FUNC float gc_atan2(float y, float x)
     if (x < 0.0f) a = GC_PI - a;
     return y < 0.0f ? -a : a;
 }
-
-/* acos x for x in [-1, 1], as the angle of (x, sqrt(1 - x^2)); (1 - x)(1 + x) keeps the
- * sine's precision near |x| = 1. */
-GC_FUNC float gc_acos(float x) { return gc_atan2(sqrt((1.0f - x) * (1.0f + x)), x); }
 
 GC_NAMESPACE_END
 

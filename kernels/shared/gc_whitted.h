@@ -1,7 +1,8 @@
 /*
- * gc_whitted.h — the pure pieces of the Whitted integrator (kernels/whitted.cl): local
- * shading of one light sample, the ambient term, and the split of a specular surface into
- * its reflected and refracted rays. Shared so host tests check exactly what the kernel does.
+ * gc_whitted.h — the pure pieces of the Whitted integrator (gc_whitted_tree.h walks the ray
+ * tree with them for kernels/whitted.cl and kernels/vk/whitted.comp): local shading of one
+ * light sample, the ambient term, and the split of a specular surface into its reflected and
+ * refracted rays. Shared so host tests check exactly what the kernels do.
  *
  * Whitted 1980, "An Improved Illumination Model for Shaded Display" (CACM 23(6)):
  *     I = I_a + sum_lights (diffuse + specular) * visibility + k_s S + k_t T
@@ -12,9 +13,10 @@
  * reflected / refracted rays carry the mirror reflectance or the Fresnel split.
  *
  * Directions are world space, unit length, pointing AWAY from the surface (wo towards the
- * viewer, wi towards the light). ns is the shading normal and ng the geometric one, on the
- * same side (gc_surface_at guarantees it), NOT flipped toward the viewer: opaque materials
- * are two-sided and the functions below flip as needed.
+ * viewer, wi towards the light). ns is the shading normal and ng the geometric one, each as
+ * the mesh has it (they may face opposite ways on badly authored meshes: docs/design.md),
+ * NOT flipped toward the viewer: opaque materials are two-sided and the functions below flip
+ * as needed; a dielectric's inside is behind ns.
  *
  * GcWhittedSpecular holds float3: register-only, never put it in a buffer.
  */
@@ -25,6 +27,13 @@
 #include "gc_frame.h"
 
 GC_NAMESPACE_BEGIN
+
+/* Whether any channel of a radiance or weight is positive. */
+GC_FUNC bool gc_whitted_nonzero(float3 v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+
+/* How much a pending ray of the tree can still add: its largest weight channel (the ray-tree
+ * stack drops the lowest when it overflows, gc_whitted_tree.h). */
+GC_FUNC float gc_whitted_priority(float3 weight) { return fmax(weight.x, fmax(weight.y, weight.z)); }
 
 /* f(wo, wi) * |cos theta_i| of the material's non-delta part (Lambert; Phong's kd and ks
  * lobes; the diffuse kd of a mirror; nothing for a dielectric). An opaque surface lets no

@@ -16,7 +16,11 @@
 #define GC_VK_BINDING_FILM 8      /* vec4[] per pixel: sum of samples (compute only) */
 #define GC_VK_BINDING_POSITIONS 9 /* vec4[] three per scene triangle (raster only) */
 #define GC_VK_BINDING_SRGB 10     /* float[256]: gc_srgb_to_linear_table (gc_srgb_table.h) */
-#define GC_VK_BINDING_COUNT 11
+#define GC_VK_BINDING_POINT_LIGHTS 11    /* GcPointLight[] */
+#define GC_VK_BINDING_ENV_PIXELS 12      /* vec4[] lat-long environment map, row 0 at the zenith */
+#define GC_VK_BINDING_ENV_MARGINAL 13    /* float[] its rows' cdf (environment.h) */
+#define GC_VK_BINDING_ENV_CONDITIONAL 14 /* float[] each row's texels' cdf */
+#define GC_VK_BINDING_COUNT 15
 
 #define GC_VK_LOCAL_SIZE 64 /* compute work-group size */
 

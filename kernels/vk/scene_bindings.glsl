@@ -1,7 +1,8 @@
 /*
  * scene_bindings.glsl — the scene buffers as std430 SSBOs, declared with the structs of
  * kernels/shared/gc_types.h (no second, hand-written copy), and the macros through which
- * the shared headers (gc_traverse.h, gc_texture.h, gc_path.h, gc_path_vertex.h) read them.
+ * the shared headers (gc_traverse.h, gc_texture.h, gc_path.h, gc_lights.h, gc_path_vertex.h,
+ * gc_whitted_tree.h) read them.
  * Include after #version; define GC_VK_COMPUTE first in compute shaders (the film is
  * writable there and absent elsewhere).
  */
@@ -22,6 +23,10 @@ layout(std430, set = 0, binding = GC_VK_BINDING_MATERIALS) readonly buffer Mater
 layout(std430, set = 0, binding = GC_VK_BINDING_TEXTURES) readonly buffer TextureBuffer { GcTexture texture_data[]; };
 layout(std430, set = 0, binding = GC_VK_BINDING_TEXELS) readonly buffer TexelBuffer { uint texel_data[]; };
 layout(std430, set = 0, binding = GC_VK_BINDING_EMITTERS) readonly buffer EmitterBuffer { GcEmitter emitter_data[]; };
+layout(std430, set = 0, binding = GC_VK_BINDING_POINT_LIGHTS) readonly buffer PointLightBuffer { GcPointLight point_light_data[]; };
+layout(std430, set = 0, binding = GC_VK_BINDING_ENV_PIXELS) readonly buffer EnvPixelBuffer { vec4 env_pixel_data[]; };
+layout(std430, set = 0, binding = GC_VK_BINDING_ENV_MARGINAL) readonly buffer EnvMarginalBuffer { float env_marginal_data[]; };
+layout(std430, set = 0, binding = GC_VK_BINDING_ENV_CONDITIONAL) readonly buffer EnvConditionalBuffer { float env_conditional_data[]; };
 #ifdef GC_VK_COMPUTE
 layout(std430, set = 0, binding = GC_VK_BINDING_FILM) buffer FilmBuffer { vec4 film[]; };
 #endif
@@ -51,3 +56,12 @@ layout(std430, set = 0, binding = GC_VK_BINDING_SRGB) readonly buffer SrgbBuffer
 #define GC_TEXTURE(i) texture_data[i]
 #define GC_ALPHA_PARAMS uint gc_alpha_unused
 #define GC_ALPHA_ARGS 0u
+#define GC_LIGHTS_PARAMS uint gc_lights_unused
+#define GC_LIGHTS_ARGS 0u
+#define GC_LIGHTS_UNUSED()
+#define GC_POINT_LIGHT(i) point_light_data[i]
+#define GC_ENV_PIXEL(i) env_pixel_data[i]
+#define GC_ENV_MARGINAL(i) env_marginal_data[i]
+#define GC_ENV_CONDITIONAL(i) env_conditional_data[i]
+#define GC_SCENE_PARAMS uint gc_scene_unused
+#define GC_SCENE_ARGS 0u

@@ -140,6 +140,7 @@ TEST(CompareRadiance, IdenticalImagesAgree)
     const RadianceAgreement r = compare_radiance(uniform(4, 4, 0.5f), uniform(4, 4, 0.5f));
     EXPECT_EQ(r.rel_mse, 0.0);
     EXPECT_EQ(r.within, 1.0);
+    EXPECT_EQ(r.identical, 1.0);
     EXPECT_NEAR(r.ref_mean, 0.5, 1e-12);
 }
 
@@ -150,6 +151,7 @@ TEST(CompareRadiance, OnePixelOffByOnePercent)
     test.set(1, 2, Rgba{0.505f, 0.5f, 0.5f, 1.0f});
     const RadianceAgreement r = compare_radiance(ref, test);
     EXPECT_DOUBLE_EQ(r.within, 15.0 / 16.0);
+    EXPECT_DOUBLE_EQ(r.identical, 15.0 / 16.0);
     // (0.005)^2 / (0.25 + 0.01), averaged over 16 pixels * 3 channels.
     EXPECT_NEAR(r.rel_mse, 0.005 * 0.005 / 0.26 / 48.0, 1e-9);
     EXPECT_NEAR(r.max_rel_error, 0.005 / 0.505, 1e-6);
@@ -160,6 +162,7 @@ TEST(CompareRadiance, BlackPixelsUseTheAbsoluteFloor)
     Film test = uniform(2, 2, 0.0f);
     test.set(0, 0, Rgba{5e-7f, 0.0f, 0.0f, 1.0f});
     EXPECT_EQ(compare_radiance(uniform(2, 2, 0.0f), test).within, 1.0);
+    EXPECT_EQ(compare_radiance(uniform(2, 2, 0.0f), test).identical, 0.75); // within, but not the same bits
     test.set(0, 0, Rgba{1e-5f, 0.0f, 0.0f, 1.0f});
     EXPECT_EQ(compare_radiance(uniform(2, 2, 0.0f), test).within, 0.75);
 }
