@@ -109,6 +109,26 @@ inline Vec3 normalize(const Vec3& v) { return v / length(v); }
 inline Normal3 normalize(const Normal3& n) { return n / length(n); }
 inline float distance(const Point3& a, const Point3& b) { return length(a - b); }
 
+namespace detail {
+inline Vec3 unit_vector_in_double(double x, double y, double z)
+{
+    const double len = std::sqrt(x * x + y * y + z * z);
+    if (!(len > 0.0)) return {};
+    return {static_cast<float>(x / len), static_cast<float>(y / len), static_cast<float>(z / len)};
+}
+}  // namespace detail
+
+// v / |v| computed in double: in float, |v|^2 underflows for |v| below ~1e-19 and overflows
+// above ~1e19, where normalize() returns NaN or zero. The zero vector stays zero.
+inline Vec3 unit_vector(const Vec3& v) { return detail::unit_vector_in_double(v.x, v.y, v.z); }
+
+// The unit vector from `from` towards `to`, differenced in double too (the float difference
+// of two distant points can overflow). Zero when the points coincide.
+inline Vec3 unit_direction(const Point3& from, const Point3& to)
+{
+    return detail::unit_vector_in_double(double(to.x) - from.x, double(to.y) - from.y, double(to.z) - from.z);
+}
+
 // Flips n to the hemisphere of v (pbrt's FaceForward).
 inline Normal3 face_forward(const Normal3& n, const Vec3& v) { return dot(n, v) < 0 ? -n : n; }
 

@@ -289,8 +289,10 @@ void set_environment_map(dev::GcRenderParams& params, const RenderSettings& sett
 
 dev::GcCamera make_camera(const Camera& camera, int width, int height)
 {
-    const Vec3 forward = normalize(camera.look_at - camera.look_from);
-    Vec3 right = cross(forward, camera.up);
+    // In double (unit_direction): float's squared lengths fail for scenes below ~1e-19 or
+    // above ~1e19 across, which resolve_camera accepts.
+    const Vec3 forward = unit_direction(camera.look_from, camera.look_at);
+    Vec3 right = cross(forward, unit_vector(camera.up));
     if (!(length(right) > 1e-8f)) {
         // up parallel to the view direction: pick any perpendicular up rather than NaNs.
         right = cross(forward, std::fabs(forward.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0));

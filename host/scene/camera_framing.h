@@ -18,12 +18,16 @@ struct CameraOverrides {
 // Looks at the centre of the scene's bounds from +Z (down -Z, +Y up) with a 40-degree
 // vertical field of view, from the nearest distance at which every corner of the bounding
 // box projects inside the view with a 5% margin (for images at least as wide as they are
-// tall). An empty scene gives the default Camera.
+// tall). An empty scene gives the default Camera. Works at any scale single precision can
+// hold; throws InputError naming the scene's file and its extent when no float camera can
+// frame it (the camera would stand past float's range, or so close to the centre that its
+// position rounds onto the centre's).
 Camera frame_camera(const Scene& scene);
 
-// The file's camera (or frame_camera's) with the overrides applied. Throws UsageError when the
-// result is unusable: look_from == look_at, up parallel to the view direction, a zero up, or
-// a field of view outside (0, 180) degrees.
+// The file's camera (or frame_camera's, unless the overrides give both look_from and
+// look_at) with the overrides applied. Throws UsageError when the result is unusable:
+// look_from == look_at, up parallel to the view direction, a zero up, or a field of view
+// outside (0, 180) degrees.
 Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides);
 
 }  // namespace gc

@@ -1,5 +1,6 @@
 #include "host/scene/glb_check.h"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "host/util/error.h"
@@ -51,6 +52,13 @@ void check_glb_container(const unsigned char* bytes, std::size_t size, const std
         ++chunk;
     }
     if (chunk == 0) throw InputError(prefix + "no JSON chunk");
+}
+
+std::string_view glb_json_chunk(const unsigned char* bytes, std::size_t size)
+{
+    // Header (12 bytes), then the JSON chunk's length and type (8), then its data.
+    const std::size_t length = read_u32_le(bytes + 12);
+    return {reinterpret_cast<const char*>(bytes) + 20, std::min(length, size - 20)};
 }
 
 }  // namespace gc

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace gc {
 
@@ -12,5 +13,8 @@ namespace gc {
 // version 2, total length), then chunks of (uint32 length, uint32 type, data[length]): first
 // JSON, then optionally BIN. Throws InputError naming `file_name` and the inconsistency.
 void check_glb_container(const unsigned char* bytes, std::size_t size, const std::string& file_name);
+
+// The JSON chunk's text, of a container check_glb_container accepted.
+std::string_view glb_json_chunk(const unsigned char* bytes, std::size_t size);
 
 }  // namespace gc

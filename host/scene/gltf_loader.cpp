@@ -1,5 +1,6 @@
 #include "host/scene/gltf_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +16,7 @@
 
 #include "host/math/transform.h"
 #include "host/scene/gltf_accessor.h"
+#include "host/scene/gltf_conformance.h"
 #include "host/scene/glb_check.h"
 #include "host/scene/gltf_files.h"
 #include "host/scene/gltf_images.h"
@@ -413,11 +415,19 @@ private:
         // What the renderer does not model is said once per material, not silently dropped.
         if (m.occlusionTexture.index >= 0)
             log_warning(m_name + ": " + where + ": occlusionTexture is ignored (a path tracer computes occlusion)");
+        // Extensions the file declares in extensionsUsed get one warning for the whole file
+        // (warn_unsupported_gltf_extensions); this catches the ones it forgot to declare.
         for (const auto& [ext, unused] : m.extensions)
-            if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_ior" && ext != "KHR_materials_transmission")
+            if (!gltf_extension_supported(ext) && !declared_as_used(ext))
                 log_warning(m_name + ": " + where + ": extension " + ext + " is not supported; ignored");
         out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, where);
         return out;
+    }
+
+    bool declared_as_used(const std::string& extension) const
+    {
+        const std::vector<std::string>& used = m_model.extensionsUsed;
+        return std::find(used.begin(), used.end(), extension) != used.end();
     }
 
     static WrapMode wrap(int mode)
@@ -570,6 +580,11 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext == ".glb" || binary) check_glb_container(bytes.data(), bytes.size(), name);
     if (bytes.empty()) throw InputError(name + ": empty file");
+    const std::string_view json_text =
+        binary ? glb_json_chunk(bytes.data(), bytes.size())
+               : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (const std::optional<GltfDeclarations> declared = read_gltf_declarations(json_text))
+        check_gltf_declarations(*declared, name);
 
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
@@ -606,6 +621,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
     // tinygltf's warnings only once the scene is known to load: when it does not, the error
     // already carries the reason (a missing image is a warning to tinygltf).
     forward_warnings(warn, name);
+    warn_unsupported_gltf_extensions(model.extensionsUsed, name);
     if (scene.triangle_count() == 0) throw InputError(name + ": no triangles");
     if (scene.materials.empty()) scene.materials.push_back(Material{});
     return scene;

@@ -6,11 +6,14 @@
 
 #include "host/scene/gltf_loader.h"
 #include "host/scene/obj_loader.h"
+#include "host/scene/scene_checks.h"
 #include "host/util/error.h"
 
 namespace gc {
 
-Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
+namespace {
+
+Scene load_by_extension(const std::filesystem::path& path, const LoadOptions& options)
 {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -18,6 +21,15 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
     if (ext == ".gltf" || ext == ".glb") return load_gltf(path, options);
     throw InputError(path.string() + ": unsupported scene format '" + (ext.empty() ? std::string("(none)") : ext) +
                      "' (supported: .obj, .gltf, .glb)");
+}
+
+}  // namespace
+
+Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
+{
+    Scene scene = load_by_extension(path, options);
+    check_some_triangle_has_area(scene);
+    return scene;
 }
 
 }  // namespace gc

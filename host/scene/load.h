@@ -10,7 +10,8 @@ namespace gc {
 
 // Loads .obj (with its .mtl files and textures), .gltf or .glb, chosen by the extension
 // (case-insensitive). Throws InputError naming the file for anything unreadable or malformed;
-// a file with another extension is an InputError listing the supported ones.
+// a file with another extension is an InputError listing the supported ones, and so is a
+// scene whose triangles all have zero area (scene_checks.h).
 Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace gc

@@ -37,6 +37,21 @@ TEST(Affine, LerpEndpointsAndInterior)
     expect_point_near(lerp(2.0f, a, b), Point3(9, -6, 11));
 }
 
+// unit_vector / unit_direction work where float's squared length does not: below ~1e-19 it
+// underflows to 0 (normalize gives NaN), above ~1e19 it overflows (normalize gives 0).
+TEST(Affine, UnitVectorsAtAnyScale)
+{
+    for (const float scale : {1e-40f, 1e-30f, 1e-20f, 1.0f, 1e20f, 1e30f, 3e38f}) {
+        const Vec3 u = unit_vector(Vec3(3 * (scale / 5), 0, 4 * (scale / 5)));
+        EXPECT_NEAR(u.x, 0.6f, 1e-3f) << scale;  // 1e-40 is subnormal: only a few digits
+        EXPECT_NEAR(u.z, 0.8f, 1e-3f) << scale;
+        const Vec3 d = unit_direction(Point3(-scale, 0, 0), Point3(scale, 0, 0));  // 2 * 3e38 overflows float
+        EXPECT_EQ(d, Vec3(1, 0, 0)) << scale;
+    }
+    EXPECT_EQ(unit_vector(Vec3(0, 0, 0)), Vec3(0, 0, 0));
+    EXPECT_EQ(unit_direction(Point3(1, 2, 3), Point3(1, 2, 3)), Vec3(0, 0, 0));
+}
+
 TEST(Affine, Midpoint)
 {
     expect_point_near(midpoint(Point3(-1, 0, 2), Point3(3, 4, 2)), Point3(1, 2, 2));

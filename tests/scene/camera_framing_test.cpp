@@ -5,6 +5,7 @@
 
 #include "host/scene/camera_framing.h"
 #include "host/util/error.h"
+#include "scene_test_util.h"
 
 namespace gc {
 namespace {
@@ -94,6 +95,52 @@ TEST(CameraFraming, UnusableOverridesAreUsageErrors)
     CameraOverrides fov;
     fov.fov = 180.0f;
     EXPECT_THROW(resolve_camera(s, fov), UsageError);
+}
+
+// The same box at every scale float holds frames the same way: the camera's distance is
+// the same multiple of the extent, and resolve_camera accepts it (it used to call the look-
+// from and look-at "the same point" below ~1e-19, when float's squared length underflowed).
+TEST(CameraFraming, AnyRepresentableScale)
+{
+    const Scene unit = box_scene(Point3(-1, 0, -1), Point3(1, 2, 1));
+    const Camera reference = frame_camera(unit);
+    const float reference_ratio = (reference.look_from.z - reference.look_at.z) / 2.0f;
+    for (const float scale : {1e-38f, 1e-30f, 1e-20f, 1e-12f, 1e-3f, 1e3f, 1e12f, 1e20f, 1e30f, 1e37f}) {
+        const Scene s = box_scene(Point3(-scale, 0, -scale), Point3(scale, 2 * scale, scale));
+        const Camera c = resolve_camera(s, {});
+        EXPECT_TRUE(is_finite(c.look_from)) << scale;
+        EXPECT_NE(c.look_from, c.look_at) << scale;
+        EXPECT_EQ(c.look_at, Point3(0, scale, 0)) << scale;
+        const double ratio = (double(c.look_from.z) - c.look_at.z) / (2.0 * scale);
+        EXPECT_NEAR(ratio, reference_ratio, 1e-5 * reference_ratio) << scale;
+    }
+}
+
+TEST(CameraFraming, UnframeableSceneIsAnInputError)
+{
+    // 1e-3 across at z = 1e7, where float's spacing is 1: the camera's 0.0014 vanishes.
+    Scene tiny = box_scene(Point3(0, 0, 1e7f), Point3(1e-3f, 1e-3f, 1e7f));
+    tiny.source_path = "tiny.obj";
+    test::expect_input_error([&] { frame_camera(tiny); },
+                             {"tiny.obj: scene extent 0.001 x 0.001 x 0", "too small to frame"});
+    // 4e38 across: the camera would stand past float's largest value.
+    Scene huge = box_scene(Point3(-2e38f, -2e38f, -2e38f), Point3(2e38f, 2e38f, 2e38f));
+    huge.source_path = "huge.obj";
+    const std::string msg = test::expect_input_error([&] { resolve_camera(huge, {}); },
+                                                     {"huge.obj: scene extent 4e+38 x 4e+38 x 4e+38", "too large to frame"});
+    EXPECT_EQ(msg.find("same point"), std::string::npos);
+
+    // Nothing to frame when the file or the user places the camera.
+    CameraOverrides placed;
+    placed.look_from = Point3(0, 0, 1e7f + 8.0f);
+    placed.look_at = Point3(0, 0, 1e7f);
+    const Camera user = resolve_camera(tiny, placed);
+    EXPECT_EQ(user.look_from, *placed.look_from);
+    EXPECT_EQ(user.vfov_degrees, 40.0f);
+    Camera file;
+    file.look_from = Point3(0, 0, 3);
+    huge.camera = file;
+    EXPECT_EQ(resolve_camera(huge, {}).look_from, file.look_from);
 }
 
 TEST(CameraFraming, EmptySceneGivesDefault)

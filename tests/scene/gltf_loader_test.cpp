@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "host/scene/gltf_conformance.h"
 #include "host/scene/load.h"
 #include "host/scene/triangle_sink.h"
 #include "scene_test_util.h"
@@ -39,12 +40,13 @@ struct Doc {
     std::string nodes = R"([{"mesh": 0}])";
     std::string scenes = R"([{"nodes": [0]}])";
     std::string top = "";  // extra top-level members, each followed by a comma
+    std::string asset = R"({"version": "2.0"})";
     std::string extra_accessors;    // appended after the three above, each preceded by a comma
     std::string extra_buffer_views; // the same for bufferViews
 
     std::string json() const
     {
-        return "{" + top + R"("asset": {"version": "2.0"}, "scene": 0, "scenes": )" + scenes + R"(, "nodes": )" + nodes +
+        return "{" + top + R"("asset": )" + asset + R"(, "scene": 0, "scenes": )" + scenes + R"(, "nodes": )" + nodes +
                R"(, "meshes": [{"primitives": [{"attributes": {)" + attributes + "}" + primitive_extra + "}" +
                extra_primitives + R"(]}], "accessors": [)" + position_accessor +
                R"(, {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"},
@@ -518,6 +520,178 @@ TEST(GltfErrors, GarbageFiles)
     expect_input_error([&] { load_scene(dir.write("empty.gltf", "")); }, {"empty.gltf"});
     expect_input_error([&] { load_scene(dir.write("nomesh.gltf", R"({"asset": {"version": "2.0"}})")); },
                        {"nomesh.gltf", "no triangles"});
+}
+
+// --- conformance: what the asset declares (gltf_conformance.h)
+
+TEST(GltfConformance, MajorVersionOtherThan2IsRefused)
+{
+    ScratchDir dir;
+    Doc doc;
+    for (const char* version : {"1.0", "3.0", "0.9", "99999999999.0"}) {
+        doc.asset = std::string(R"({"version": ")") + version + "\"}";
+        expect_input_error([&] { load_scene(write_gltf(dir, doc)); },
+                           {"tri.gltf", std::string("glTF version ") + version + " (asset.version) is not supported"});
+    }
+    // The same asset check inside a (valid, version-2) .glb container.
+    doc.asset = R"({"version": "1.0"})";
+    expect_input_error([&] { load_scene(dir.write("v1.glb", make_glb(doc))); }, {"v1.glb", "glTF version 1.0"});
+}
+
+TEST(GltfConformance, MalformedOrMissingVersionIsRefused)
+{
+    ScratchDir dir;
+    Doc doc;
+    for (const char* version : {"2", "2.", ".0", "2.0.1", "v2.0", "2.x", "+2.0", ""}) {
+        doc.asset = std::string(R"({"version": ")") + version + "\"}";
+        expect_input_error([&] { load_scene(write_gltf(dir, doc)); },
+                           {"tri.gltf", std::string("asset.version '") + version + "' is not MAJOR.MINOR"});
+    }
+    // A hostile version string reaches the message without its terminal escapes, and cut short.
+    doc.asset = R"({"version": "\u001b[2J)" + std::string(200, '9') + "\"}";
+    const std::string msg = expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "'?[2J999", "...'"});
+    EXPECT_EQ(msg.find('\x1b'), std::string::npos);
+    EXPECT_LT(msg.size(), 200 + dir.path().string().size());
+    doc.asset = R"({"generator": "no version"})";
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "asset.version is missing"});
+    doc.asset = R"({"version": 2.0})";  // a number, not the string the spec asks for
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "asset.version is missing"});
+}
+
+TEST(GltfConformance, MinVersionAbove20IsRefused)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.asset = R"({"version": "2.1", "minVersion": "2.1"})";
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); },
+                       {"tri.gltf", "asset.minVersion 2.1 asks for a glTF 2.1 loader; this one implements glTF 2.0"});
+    doc.asset = R"({"version": "3.0", "minVersion": "3.0"})";  // the major version is reported first
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "glTF version 3.0"});
+    doc.asset = R"({"version": "2.0", "minVersion": "latest"})";
+    expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "asset.minVersion 'latest' is not MAJOR.MINOR"});
+}
+
+TEST(GltfConformance, Later2xVersionsLoad)
+{
+    // The spec's forward compatibility: a 2.0 loader loads 2.x unless minVersion says otherwise.
+    ScratchDir dir;
+    Doc doc;
+    for (const char* asset : {R"({"version": "2.0", "minVersion": "2.0"})", R"({"version": "2.1"})",
+                              R"({"version": "2.10", "minVersion": "1.0"})"}) {
+        doc.asset = asset;
+        EXPECT_EQ(load_scene(write_gltf(dir, doc)).triangle_count(), 1u) << asset;
+    }
+}
+
+TEST(GltfConformance, UnsupportedRequiredExtensionsAreAllNamed)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.top = R"("extensionsUsed": ["KHR_draco_mesh_compression", "KHR_materials_ior", "EXT_meshopt_compression"],
+                 "extensionsRequired": ["KHR_draco_mesh_compression", "KHR_materials_ior", "EXT_meshopt_compression"],)";
+    const std::string msg = expect_input_error(
+        [&] { load_scene(write_gltf(dir, doc)); },
+        {"tri.gltf", "requires glTF extension(s) KHR_draco_mesh_compression, EXT_meshopt_compression, which this loader "
+                     "does not implement"});
+    for (std::string_view supported : k_supported_gltf_extensions)  // listed as what it does implement
+        EXPECT_NE(msg.find(std::string(supported)), std::string::npos) << supported;
+
+    doc.top = R"("extensionsRequired": ["KHR_texture_basisu"],)";
+    expect_input_error([&] { load_scene(dir.write("basisu.glb", make_glb(doc))); }, {"basisu.glb", "KHR_texture_basisu"});
+}
+
+TEST(GltfConformance, RefusedBeforeBuffersAreRead)
+{
+    // The declarations are checked first: the missing buffer is never looked for.
+    ScratchDir dir;
+    Doc doc;
+    doc.top = R"("extensionsRequired": ["KHR_draco_mesh_compression"],)";
+    doc.buffer_uri = R"("uri": "not_there.bin", )";
+    const std::string msg = expect_input_error([&] { load_scene(dir.write("draco.gltf", doc.json())); },
+                                               {"draco.gltf", "KHR_draco_mesh_compression"});
+    EXPECT_EQ(msg.find("not_there.bin"), std::string::npos) << msg;
+}
+
+TEST(GltfConformance, EverySupportedExtensionMayBeRequired)
+{
+    ScratchDir dir;
+    Doc doc;
+    std::string names;
+    for (std::string_view n : k_supported_gltf_extensions) names += (names.empty() ? "\"" : ", \"") + std::string(n) + "\"";
+    doc.top = "\"extensionsUsed\": [" + names + "], \"extensionsRequired\": [" + names + "],";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc));
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(s.triangle_count(), 1u);
+    EXPECT_EQ(err.find("extension"), std::string::npos) << err;
+}
+
+TEST(GltfConformance, UnsupportedUsedExtensionsGetOneWarning)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+    doc.top = R"("materials": [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1},
+                                               "KHR_materials_sheen": {}, "KHR_materials_ior": {"ior": 1.2}}}],
+                 "extensionsUsed": ["KHR_texture_transform", "KHR_materials_clearcoat", "KHR_materials_ior"],)";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc));
+    const std::string err = testing::internal::GetCapturedStderr();
+    std::printf("  stderr: %s", err.c_str());
+    EXPECT_EQ(s.triangle_count(), 1u);
+    EXPECT_NEAR(s.materials[0].ior, 1.2f, 1e-6f);
+    EXPECT_NE(err.find("tri.gltf: uses glTF extension(s) KHR_texture_transform, KHR_materials_clearcoat, which this "
+                       "loader does not implement; ignored"),
+              std::string::npos);
+    const auto count = [&](const std::string& what) {
+        std::size_t n = 0;
+        for (auto at = err.find(what); at != std::string::npos; at = err.find(what, at + 1)) ++n;
+        return n;
+    };
+    EXPECT_EQ(count("KHR_materials_clearcoat"), 1u) << "declared: named once, by the file's warning";
+    EXPECT_EQ(count("KHR_materials_sheen"), 1u) << "undeclared: still named, by the material's warning";
+    EXPECT_EQ(count("KHR_materials_ior"), 0u) << "supported: no warning";
+}
+
+TEST(GltfConformance, DeclarationsAreReadFromTheTopLevelOnly)
+{
+    const auto declared = read_gltf_declarations(R"({"asset": {"version": "2.0", "minVersion": "2.0"},
+        "nodes": [{"extensionsRequired": ["NOT_TOP_LEVEL"]}], "extensionsRequired": ["A", 7],
+        "extensionsUsed": ["A", "B"], "buffers": [{"uri": "data:,xyz"}]})");
+    ASSERT_TRUE(declared.has_value());
+    EXPECT_EQ(declared->version, "2.0");
+    EXPECT_EQ(declared->min_version, "2.0");
+    EXPECT_EQ(declared->extensions_required, (std::vector<std::string>{"A", "7"}));
+    EXPECT_EQ(declared->extensions_used, (std::vector<std::string>{"A", "B"}));
+    EXPECT_FALSE(read_gltf_declarations("{\"asset\": ").has_value());  // tinygltf reports broken JSON
+    EXPECT_FALSE(read_gltf_declarations("[1, 2]").has_value());
+    EXPECT_EQ(unsupported_gltf_extensions({"KHR_materials_ior", "X", "X", "KHR_lights_punctual", "Y"}),
+              (std::vector<std::string>{"X", "Y"}));
+}
+
+// --- every triangle has zero area (scene_checks.h, run by load_scene for every format)
+
+TEST(GltfErrors, EveryTriangleZeroAreaIsRefused)
+{
+    ScratchDir dir;
+    const float collinear[9] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+    std::vector<unsigned char> bin = triangle_bin();
+    std::memcpy(bin.data(), collinear, sizeof collinear);
+    expect_input_error([&] { load_scene(write_gltf(dir, Doc{}, bin)); },
+                       {"tri.gltf", "every triangle has zero area (1 triangle(s)"});
+    expect_input_error([&] { load_scene(dir.write("flat.glb", make_glb(Doc{}, bin))); },
+                       {"flat.glb", "every triangle has zero area"});
+
+    // With one real triangle beside it the degenerate one is kept, as before.
+    Doc doc;
+    doc.extra_primitives = R"(, {"attributes": {"POSITION": 3}})";
+    doc.extra_accessors = R"(, {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC3"})";
+    doc.extra_buffer_views = R"(, {"buffer": 0, "byteOffset": 80, "byteLength": 36})";
+    doc.buffer_length = "116";
+    bin.resize(116);
+    const float good[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::memcpy(bin.data() + 80, good, sizeof good);
+    EXPECT_EQ(load_scene(write_gltf(dir, doc, bin)).triangle_count(), 2u);
 }
 
 }  // namespace

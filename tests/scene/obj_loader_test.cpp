@@ -273,10 +273,32 @@ TEST(ObjSynthetic, VertexNormalsAndUvs)
 TEST(ObjSynthetic, DegenerateTriangleKept)
 {
     ScratchDir dir;
-    const auto p = dir.write("degenerate.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\nf 1 1 1\n");
+    const auto p = dir.write("degenerate.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nv 0 1 0\nf 1 2 3\nf 1 1 1\nf 1 2 4\n");
     const Scene s = load_scene(p);
     expect_invariants(s);
-    EXPECT_EQ(s.triangle_count(), 2u);
+    EXPECT_EQ(s.triangle_count(), 3u);
+}
+
+TEST(ObjErrors, EveryTriangleZeroAreaIsRefused)
+{
+    ScratchDir dir;
+    const auto p = dir.write("flat.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\nf 1 1 1\nf 3 2 1\n");
+    expect_input_error([&] { load_scene(p); }, {"flat.obj", "every triangle has zero area (3 triangle(s)"});
+    // A quad whose four corners lie on one line fans into two flat triangles.
+    const auto q = dir.write("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3 4\n");
+    expect_input_error([&] { load_scene(q); }, {"line.obj", "every triangle has zero area (2 triangle(s)"});
+}
+
+TEST(ObjSynthetic, TinyAndHugeTrianglesHaveArea)
+{
+    // In float the cross product of these edges underflows to 0 (1e-60) or overflows to inf
+    // (1e60); the area test must see both as the real triangles they are.
+    ScratchDir dir;
+    for (const char* scale : {"1e-30", "1e-44", "1e30", "3e38"}) {
+        const std::string s = scale;
+        const auto p = dir.write("scaled.obj", "v 0 0 0\nv " + s + " 0 0\nv 0 " + s + " 0\nf 1 2 3\n");
+        EXPECT_EQ(load_scene(p).triangle_count(), 1u) << scale;
+    }
 }
 
 TEST(ObjSynthetic, MaterialsAndMissingMtl)

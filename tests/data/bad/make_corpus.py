@@ -62,11 +62,20 @@ write("obj_mtl_garbage_shininess.obj", "mtllib obj_mtl_garbage_shininess.mtl\n" 
 write("obj_mtl_garbage_shininess.mtl", "newmtl m\nKd 0.5 0.5 0.5\nKs 0.1 0.1 0.1\nNs shiny\n")
 # A library that is a device: reading /dev/stdin would block forever.
 write("obj_mtllib_device.obj", "mtllib /dev/stdin\n" + TRI + "f 1 2 3\n")
-# Degenerate but valid: these must render (exit 0).
-write("obj_missing_mtl.obj", "mtllib no_such_library.mtl\n" + TRI + "usemtl white\nf 1 2 3\n")
+# Nothing to render: every triangle has zero area (collinear, or all corners on one point).
 write("obj_degenerate_only.obj",
       "# every triangle has zero area: collinear, or all corners on one point\n"
       "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 1 1\nf 1 2 3\nf 4 4 4\nf 1 1 2\n")
+# No single-precision camera frames these: it would stand past float's range (3.4e38), or
+# so close to a scene 1e-3 across at z = 1e7 that its z rounds onto the scene's (ulp 1).
+write("obj_extent_too_large.obj", "v -2e38 -2e38 -2e38\nv 2e38 -2e38 -2e38\nv 0 2e38 2e38\nf 1 2 3\n")
+write("obj_tiny_far_from_origin.obj", "v 0 0 1e7\nv 1e-3 0 1e7\nv 0 1e-3 1e7\nf 1 2 3\n")
+# Degenerate but valid: these must render (exit 0).
+write("obj_missing_mtl.obj", "mtllib no_such_library.mtl\n" + TRI + "usemtl white\nf 1 2 3\n")
+# Tiny and huge but representable: the default camera frames both (whether the kernels'
+# single-precision intersection resolves them is another matter; exit 0 is what is checked).
+write("obj_extent_1e-30.obj", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\n")
+write("obj_extent_1e30.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n")
 write("obj_zero_area_and_duplicates.obj",
       "# a real quad, duplicated vertices, a repeated face and zero-area slivers\n"
       "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\n"
@@ -218,10 +227,30 @@ gltf("gltf_accessor_without_bufferview_huge.gltf", {
     "asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
     "accessors": [{"componentType": 5126, "count": 3999999999, "type": "VEC3"}]})
-# Degenerate but valid: renders.
+# Its only triangle has collinear corners: nothing to render.
 write("tri_degenerate.bin", tri_bin(positions=[0, 0, 0, 1, 1, 1, 2, 2, 2]))
 d = tri_doc(uri="tri_degenerate.bin")
 gltf("gltf_degenerate_only.gltf", d)
+# Conformance (the glTF 2.0 spec): a loader must refuse an asset whose major version it
+# does not implement, whose minVersion is above its own, or that requires an extension it
+# does not implement. An extension merely used is ignored, with a warning.
+d = tri_doc(); d["asset"] = {"version": "1.0"}
+gltf("gltf_version_1.gltf", d)
+d = tri_doc(); d["asset"] = {"version": "2.1", "minVersion": "2.1"}
+gltf("gltf_min_version_2_1.gltf", d)
+d = tri_doc(); d["asset"] = {"version": "two"}
+gltf("gltf_version_malformed.gltf", d)
+d = tri_doc(); d["extensionsUsed"] = ["KHR_draco_mesh_compression", "KHR_materials_ior", "EXT_meshopt_compression"]
+d["extensionsRequired"] = ["KHR_draco_mesh_compression", "KHR_materials_ior", "EXT_meshopt_compression"]
+gltf("gltf_extension_required_unsupported.gltf", d)
+d = tri_doc(); d["extensionsUsed"] = ["KHR_materials_ior"]; d["extensionsRequired"] = ["KHR_materials_ior"]
+d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"extensions": {"KHR_materials_ior": {"ior": 1.33}}}]
+gltf("gltf_extension_required_supported.gltf", d)
+d = tri_doc(); d["extensionsUsed"] = ["KHR_texture_transform", "KHR_materials_clearcoat"]
+d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}}]
+gltf("gltf_extension_used_unsupported.gltf", d)
 
 # ---------------------------------------------------------------------------------- .glb
 good = glb(tri_doc(uri=None), tri_bin())
@@ -247,6 +276,11 @@ write("glb_binary_garbage.glb", b"glTF" + bytes((i * 193 + 1) % 256 for i in ran
 write("glb_empty.glb", b"")
 d = tri_doc(uri=None); d["accessors"][0]["count"] = 4000000000
 write("glb_absurd_count.glb", glb(d, tri_bin()))
+# A valid version-2 container holding a version-3 asset: the asset's version is checked too.
+d = tri_doc(uri=None); d["asset"] = {"version": "3.0"}
+write("glb_asset_version_3.glb", glb(d, tri_bin()))
+d = tri_doc(uri=None); d["extensionsUsed"] = ["KHR_texture_basisu"]; d["extensionsRequired"] = ["KHR_texture_basisu"]
+write("glb_extension_required_unsupported.glb", glb(d, tri_bin()))
 
 # An embedded image whose bufferView starts at the end of the 80-byte buffer: tinygltf 2.7
 # hands stb_image a pointer past the buffer without a bounds check (found by fuzz_gltf).
