@@ -27,6 +27,7 @@ ImageDifference compare_images(const Film& test, const Film& ref, double rel_tol
     require_same_size(test, ref, "image comparison");
     ImageDifference d;
     double sq = 0, rel = 0;
+    double sum_test[3] = {0, 0, 0}, sum_ref[3] = {0, 0, 0};
     size_t within = 0;
     for (size_t i = 0; i < test.pixel_count(); ++i) {
         const float* a = test.data().data() + i * 4;
@@ -43,6 +44,8 @@ ImageDifference compare_images(const Film& test, const Film& ref, double rel_tol
             rel += diff * diff / (double(b[c]) * b[c] + 1e-2);
             d.max_abs = std::max(d.max_abs, ad);
             ok = ok && ad <= rel_tol * std::fabs(double(b[c])) + abs_tol;
+            sum_test[c] += a[c];
+            sum_ref[c] += b[c];
         }
         within += ok;
         ++d.pixels;
@@ -52,6 +55,10 @@ ImageDifference compare_images(const Film& test, const Film& ref, double rel_tol
         d.rmse = std::sqrt(sq / n);
         d.rel_mse = rel / n;
         d.within_tolerance = double(within) / double(d.pixels);
+        for (int c = 0; c < 3; ++c) {
+            const double bias = std::fabs(sum_test[c] - sum_ref[c]);
+            if (bias > 0) d.mean_rel_diff = std::max(d.mean_rel_diff, bias / std::fabs(sum_ref[c]));
+        }
     }
     return d;
 }

@@ -21,6 +21,9 @@ struct ImageDifference {
     //   |test - ref| <= rel_tol * |ref| + abs_tol
     // (numpy.isclose's form: relative where the reference is bright, absolute near black).
     double within_tolerance = 0;
+    // Largest over R, G, B of |mean(test) - mean(ref)| / |mean(ref)| (a global bias, which
+    // per-pixel metrics at a modest spp cannot see); 0 where both means are 0.
+    double mean_rel_diff = 0;
 };
 
 ImageDifference compare_images(const Film& test, const Film& ref, double rel_tol = 0.01, double abs_tol = 1e-3);

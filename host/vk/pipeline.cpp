@@ -2,15 +2,17 @@
 
 #include <vector>
 
+#include "host/vk/no_contraction.h"
 #include "host/vk/vk_error.h"
 
 namespace gc::vk {
 
 ShaderModule make_shader_module(const Context& context, std::span<const std::uint32_t> spirv, const std::string& name)
 {
+    const std::vector<std::uint32_t> code = without_contraction(spirv);
     VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    ci.codeSize = spirv.size_bytes();
-    ci.pCode = spirv.data();
+    ci.codeSize = code.size() * sizeof(std::uint32_t);
+    ci.pCode = code.data();
     VkShaderModule module = VK_NULL_HANDLE;
     check(vkCreateShaderModule(context.device(), &ci, nullptr, &module), "vkCreateShaderModule",
           "loading shader '" + name + "'");

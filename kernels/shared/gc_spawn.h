@@ -16,18 +16,21 @@ GC_NAMESPACE_BEGIN
  * ray leaves from) far enough that the new ray cannot hit the surface again.
  *
  * How far depends on how wrong p can be, and that is set by the magnitudes that entered it,
- * not by p's own coordinates: a hit point o + t d carries rounding of the order of an ulp of
- * the ray origin o (the sum cancels when the camera is far from the surface), and t carries
- * error in proportion to the triangle's vertices' distance from o. So `scale` is the largest
- * |coordinate| among the ray origin and the triangle's vertices (gc_spawn_scale), and p
- * moves 2^-16 of it: 128 ulps of that magnitude, several times the bound of those errors.
+ * not by p's own coordinates. With M the largest |coordinate| among the ray origin o and the
+ * triangle's vertices (gc_spawn_scale) and eps = 2^-24: the product t d and the sum o + t d
+ * round by up to eps M each per coordinate (the sum cancels when the camera is far from the
+ * surface), and the watertight test's t is off by about 5 eps times the vertices' distance
+ * from o (Woop et al. 2013; pbrt-v4 bounds it the same way), at most 10 eps M. So p is within
+ * about 12 eps M of the surface per coordinate, 21 eps M as a vector, and p moves 64 eps M
+ * (2^-18 M) along the normal: three times that.
+ *
  * Wächter & Binder's offset (Ray Tracing Gems, ch. 6) moves each coordinate by ulps of
- * itself instead, with a fixed absolute step near zero; a coordinate near zero then moves
+ * itself instead, with a fixed absolute step near zero. A coordinate near zero then moves
  * less than its own error wherever the scene sits far from the origin (a floor at y = 0 in a
- * scene translated 800 units away re-hit itself on some devices and not on others), and too
- * far in a scene a thousand times smaller than a unit. + and * only, contraction off: the
- * same bits on every device. */
-#define GC_SPAWN_OFFSET 1.52587890625e-05f /* 2^-16 */
+ * box scaled by 500 and moved 800 units re-hit itself on some devices and not on others),
+ * and far too much in a scene a thousand times smaller than a unit. + and * only, contraction
+ * off: the same bits on every device. */
+#define GC_SPAWN_OFFSET 3.814697265625e-06f /* 2^-18 */
 
 /* The largest |coordinate| of the ray origin o and of the hit triangle (tri_extent, kept
  * in GcTriangleAttribs.ng.w). The floor keeps the offset a normal float in degenerate

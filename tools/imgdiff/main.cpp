@@ -1,7 +1,7 @@
 // geocold-imgdiff: how different are two renders? Prints the metrics of host/image/compare.h
 // and, when thresholds are given, fails with exit code 6 (ExitCode::Mismatch) past them.
 //   geocold-imgdiff test.exr ref.exr [--rel-mse-max X] [--rmse-max X] [--max-abs-max X]
-//                   [--tol REL] [--within-min F] [--heatmap out.png [--heatmap-scale S]]
+//                   [--tol REL] [--within-min F] [--mean-rel-max X] [--heatmap out.png [--heatmap-scale S]]
 //                   [--variance ref_var.exr --spp N [--alpha A] [--z-pass-min F]]
 // Exit codes: 0 within thresholds, 2 bad usage, 3 unreadable/mismatched input, 5 heat map not
 // written, 6 a threshold exceeded (non-finite pixels count as exceeding any threshold).
@@ -25,6 +25,7 @@ constexpr const char* k_usage =
     "  --max-abs-max X     fail when the largest |t-r| > X\n"
     "  --tol REL           relative tolerance for the 'within' fraction (default 0.01; +1e-3 absolute)\n"
     "  --within-min F      fail when fewer than F of the pixels are within tolerance\n"
+    "  --mean-rel-max X    fail when a channel's image mean differs from REF's by more than X of it\n"
     "  --heatmap PATH      write a difference heat map (black < red < yellow < white)\n"
     "  --heatmap-scale S   heat map value of 1 at |diff| = 1/S (default: the largest difference)\n"
     "  --variance PATH     per-sample variance of REF: run the per-pixel Z-test of TEST against REF\n"
@@ -35,7 +36,7 @@ constexpr const char* k_usage =
 
 struct Options {
     std::string test, ref, heatmap, variance;
-    std::optional<double> rel_mse_max, rmse_max, max_abs_max, within_min;
+    std::optional<double> rel_mse_max, rmse_max, max_abs_max, within_min, mean_rel_max;
     double tol = 0.01, alpha = 0.01, z_pass_min = 0.9975;
     float heatmap_scale = 0;
     uint32_t spp = 0;
@@ -69,6 +70,7 @@ Options parse(int argc, char** argv)
         else if (a == "--rmse-max") o.rmse_max = parse_number(a, v);
         else if (a == "--max-abs-max") o.max_abs_max = parse_number(a, v);
         else if (a == "--within-min") o.within_min = parse_number(a, v);
+        else if (a == "--mean-rel-max") o.mean_rel_max = parse_number(a, v);
         else if (a == "--tol") o.tol = parse_number(a, v);
         else if (a == "--heatmap") o.heatmap = v;
         else if (a == "--heatmap-scale") o.heatmap_scale = float(parse_number(a, v));
@@ -107,6 +109,7 @@ int run(int argc, char** argv)
     std::printf("  max_abs            %.6g\n", d.max_abs);
     std::printf("  within_tolerance   %.6f  (|t-r| <= %g*|r| + 1e-3)\n", d.within_tolerance, o.tol);
     std::printf("  nonfinite_pixels   %zu\n", d.nonfinite);
+    std::printf("  mean_rel_diff      %.6g  (largest over RGB of |mean(t) - mean(r)| / mean(r))\n", d.mean_rel_diff);
 
     bool failed = false;
     std::optional<gc::ZTestResult> z;
@@ -121,7 +124,8 @@ int run(int argc, char** argv)
     failed |= exceeds("rmse", d.rmse, o.rmse_max, true);
     failed |= exceeds("max_abs", d.max_abs, o.max_abs_max, true);
     failed |= exceeds("within_tolerance", d.within_tolerance, o.within_min, false);
-    const bool any_threshold = o.rel_mse_max || o.rmse_max || o.max_abs_max || o.within_min || z;
+    failed |= exceeds("mean_rel_diff", d.mean_rel_diff, o.mean_rel_max, true);
+    const bool any_threshold = o.rel_mse_max || o.rmse_max || o.max_abs_max || o.within_min || o.mean_rel_max || z;
     if (any_threshold && d.nonfinite > 0) {
         std::printf("  nonfinite pixels present: FAIL\n");
         failed = true;

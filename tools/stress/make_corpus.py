@@ -513,7 +513,10 @@ def corpus():
     for label, s, offset in (("translate-1e3", 1.0, (1e3, -3e2, 7e2)),
                              ("translate-1e5", 1.0, (1e5, -3e4, 7e4)),
                              ("scale-1e2-translate-1e3", 1e2, (1e3, -3e2, 7e2)),
-                             ("scale-1e3-translate-1e5", 1e3, (1e5, -3e4, 7e4))):
+                             ("scale-1e3-translate-1e5", 1e3, (1e5, -3e4, 7e4)),
+                             # the floor stays at y = 0 while the camera is ~1350 away: a
+                             # surface on a coordinate plane far from the camera
+                             ("scale-5e2-translate-8e2", 5e2, (8e2, 0.0, -6e2))):
         scenes["original-" + label] = transformed(
             "Original", Similarity(scale=s, offset=offset),
             "uniform scale %g, then translation by (%g, %g, %g)" % ((s,) + offset))
