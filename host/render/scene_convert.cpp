@@ -32,11 +32,24 @@ std::uint32_t material_type(MaterialType type)
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// In double, for the same reason as triangle_area below: in float the squared length of the
+// cross product overflows for triangles ~1e10 across (and underflows ~1e-10), which left
+// emitters without a normal (no light at all) in scenes of those sizes.
 Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
 {
-    const Vec3 n = cross(b - a, c - a);
-    const float len = length(n);
-    return len > 0.0f && std::isfinite(len) ? Normal3(n / len) : Normal3(0, 0, 0);
+    const glm::dvec3 n = glm::cross(glm::dvec3(b.glm()) - glm::dvec3(a.glm()), glm::dvec3(c.glm()) - glm::dvec3(a.glm()));
+    const double len = glm::length(n);
+    if (!(len > 0.0) || !std::isfinite(len)) return Normal3(0, 0, 0);
+    return Normal3(static_cast<float>(n.x / len), static_cast<float>(n.y / len), static_cast<float>(n.z / len));
+}
+
+// In double: the cross product's squared length is the fourth power of the triangle's size,
+// which leaves float's range for triangles below ~1e-10 or above ~1e10 units across.
+double triangle_area(const Point3& a, const Point3& b, const Point3& c)
+{
+    const glm::dvec3 e1 = glm::dvec3(b.glm()) - glm::dvec3(a.glm());
+    const glm::dvec3 e2 = glm::dvec3(c.glm()) - glm::dvec3(a.glm());
+    return 0.5 * glm::length(glm::cross(e1, e2));
 }
 
 // The largest |coordinate| of a triangle's corners: the scale of its hit points' rounding
@@ -219,10 +232,10 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene)
     double total_power = 0.0;
     for (std::uint32_t tri : scene.emissive_triangles()) {
         const Point3 a = scene.vertex(tri, 0), b = scene.vertex(tri, 1), c = scene.vertex(tri, 2);
-        const float area = 0.5f * length(cross(b - a, c - a));
+        const float area = static_cast<float>(triangle_area(a, b, c));
         const Material& m = scene.materials[scene.material_ids[tri]];
         const double power = static_cast<double>(area) * luminance(m.emission);
-        if (!(area > 0.0f) || !(power > 0.0)) continue;
+        if (!(area > 0.0f) || !std::isfinite(area) || !(power > 0.0)) continue;
         dev::GcEmitter e{};
         e.v0 = v4(a);
         e.v1 = v4(b);

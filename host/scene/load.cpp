@@ -29,6 +29,7 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
 {
     Scene scene = load_by_extension(path, options);
     check_some_triangle_has_area(scene);
+    check_renderable_scale(scene);
     return scene;
 }
 

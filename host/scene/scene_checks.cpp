@@ -1,5 +1,8 @@
 #include "host/scene/scene_checks.h"
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -22,6 +25,29 @@ void check_some_triangle_has_area(const Scene& scene)
         throw InputError(scene.name_for_messages() + ": every triangle has zero area (" +
                          std::to_string(scene.triangle_count()) +
                          " triangle(s), corners collinear or coincident): nothing to render");
+}
+
+void check_renderable_scale(const Scene& scene)
+{
+    if (scene.positions.empty()) return;
+    const Bounds3 b = scene.bounds();
+    const double largest = std::max({std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
+                                     std::fabs(b.hi.y), std::fabs(b.hi.z)});
+    const Vec3 d = b.diagonal();
+    const double size = std::max({double(d.x), double(d.y), double(d.z)});
+    std::ostringstream what;
+    what.precision(3);
+    if (largest > kLargestRenderableCoordinate) {
+        what << scene.name_for_messages() << ": scene coordinates reach " << largest
+             << "; geocold-cl computes in single precision and renders scenes within +-" << kLargestRenderableCoordinate
+             << " units (scale the scene down)";
+        throw InputError(what.str());
+    }
+    if (size < kSmallestRenderableSize) {
+        what << scene.name_for_messages() << ": the scene is " << size << " units across; geocold-cl computes in single"
+             << " precision and renders scenes at least " << kSmallestRenderableSize << " across (scale the scene up)";
+        throw InputError(what.str());
+    }
 }
 
 }  // namespace gc

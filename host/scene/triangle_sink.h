@@ -19,12 +19,14 @@ struct SinkCorner {
 
 // The geometric normal of a counter-clockwise triangle; +Z for a zero-area one, so that
 // degenerate triangles (kept: files have them) never put a NaN into the scene.
+// (In double: in float the cross product's squared length overflows or underflows for
+// triangles ~1e10 or ~1e-10 across.)
 inline Normal3 face_normal(const Point3& p0, const Point3& p1, const Point3& p2)
 {
-    const Vec3 c = cross(p1 - p0, p2 - p0);
-    const float len = length(c);
-    if (!(len > 0.0f) || !std::isfinite(len)) return Normal3(0.0f, 0.0f, 1.0f);
-    return Normal3(c / len);
+    const glm::dvec3 c = glm::cross(glm::dvec3(p1.glm()) - glm::dvec3(p0.glm()), glm::dvec3(p2.glm()) - glm::dvec3(p0.glm()));
+    const double len = glm::length(c);
+    if (!(len > 0.0) || !std::isfinite(len)) return Normal3(0.0f, 0.0f, 1.0f);
+    return Normal3(static_cast<float>(c.x / len), static_cast<float>(c.y / len), static_cast<float>(c.z / len));
 }
 
 class TriangleSink {

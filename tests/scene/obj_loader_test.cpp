@@ -6,6 +6,7 @@
 
 #include "host/scene/energy_conservation.h"
 #include "host/scene/load.h"
+#include "host/scene/scene_checks.h"
 #include "scene_test_util.h"
 
 namespace gc {
@@ -293,12 +294,28 @@ TEST(ObjSynthetic, TinyAndHugeTrianglesHaveArea)
 {
     // In float the cross product of these edges underflows to 0 (1e-60) or overflows to inf
     // (1e60); the area test must see both as the real triangles they are.
+    for (const float scale : {1e-30f, 1e-44f, 1e30f, 3e38f})
+        EXPECT_FALSE(has_zero_area(Point3(0, 0, 0), Point3(scale, 0, 0), Point3(0, scale, 0))) << scale;
+    EXPECT_TRUE(has_zero_area(Point3(0, 0, 0), Point3(1e30f, 0, 0), Point3(2e30f, 0, 0)));
+}
+
+// The kernels render the Cornell box the same from 1e-12 to 1e12 times its size, and darker
+// or black outside (scene_checks.h): scenes outside are refused with their extent.
+TEST(ObjErrors, ScenesOutsideTheRenderableScalesAreRefused)
+{
     ScratchDir dir;
-    for (const char* scale : {"1e-30", "1e-44", "1e30", "3e38"}) {
-        const std::string s = scale;
-        const auto p = dir.write("scaled.obj", "v 0 0 0\nv " + s + " 0 0\nv 0 " + s + " 0\nf 1 2 3\n");
-        EXPECT_EQ(load_scene(p).triangle_count(), 1u) << scale;
-    }
+    auto triangle = [&](const std::string& name, const std::string& s) {
+        return dir.write(name, "v 0 0 0\nv " + s + " 0 0\nv 0 " + s + " 0\nf 1 2 3\n");
+    };
+    EXPECT_EQ(load_scene(triangle("small_ok.obj", "2e-12")).triangle_count(), 1u);
+    EXPECT_EQ(load_scene(triangle("large_ok.obj", "1e12")).triangle_count(), 1u);
+    expect_input_error([&] { load_scene(triangle("tiny.obj", "5e-13")); },
+                       {"tiny.obj", "the scene is 5e-13 units across", "scale the scene up"});
+    expect_input_error([&] { load_scene(triangle("huge.obj", "3e12")); },
+                       {"huge.obj", "scene coordinates reach 3e+12", "scale the scene down"});
+    // Small but far from the origin counts by its coordinates.
+    expect_input_error([&] { load_scene(dir.write("far.obj", "v 2e12 0 0\nv 2e12 1 0\nv 2e12 0 1\nf 1 2 3\n")); },
+                       {"far.obj", "scene coordinates reach 2e+12"});
 }
 
 TEST(ObjSynthetic, MaterialsAndMissingMtl)

@@ -72,8 +72,8 @@ write("obj_extent_too_large.obj", "v -2e38 -2e38 -2e38\nv 2e38 -2e38 -2e38\nv 0 
 write("obj_tiny_far_from_origin.obj", "v 0 0 1e7\nv 1e-3 0 1e7\nv 0 1e-3 1e7\nf 1 2 3\n")
 # Degenerate but valid: these must render (exit 0).
 write("obj_missing_mtl.obj", "mtllib no_such_library.mtl\n" + TRI + "usemtl white\nf 1 2 3\n")
-# Tiny and huge but representable: the default camera frames both (whether the kernels'
-# single-precision intersection resolves them is another matter; exit 0 is what is checked).
+# Tiny and huge: float holds them, but the single-precision kernels would render them black
+# (scene_checks.h), so they are refused with their extent.
 write("obj_extent_1e-30.obj", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\n")
 write("obj_extent_1e30.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n")
 write("obj_zero_area_and_duplicates.obj",
