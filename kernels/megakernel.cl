@@ -26,7 +26,7 @@
  * interleaved rounds: one sample per pass, bunny 1.29x and dragon 1.11-1.18x; two, 1.32x
  * and 1.16x; four, 1.23x and 1.33x; the Cornell box 0.98-1.03x.
  * Shadow rays stay single: eight paths in lock step, to make packets of their shadow rays,
- * lost (tools/bench/experiments/README.md).
+ * lost (docs/decisions/shadow-ray-packets.md).
  *
  * One inline path loop serves both: the same loop behind helper functions (the camera ray,
  * the path, the film update each a function) ran one sample per pass at 0.87-0.93x of the

@@ -7,7 +7,7 @@
  * rays in float8 lanes replaces eight: node loads, child ordering and stack work are paid
  * once, and a triangle is tested against all eight rays in one set of vector operations.
  * Rays that part ways after the first bounce are traced one by one (gc_traverse8.h): in
- * packets they lost (tools/bench/experiments, "Explicit SIMD across paths").
+ * packets they lost (docs/decisions/simd-across-paths.md).
  *
  * Same hits as gc_trace_closest, bit for bit, ray by ray. Each lane performs the single-ray
  * code's operations: the precomputation of gc_ray_precompute and gc_ray_with_extent_margin,
