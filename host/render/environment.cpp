@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "gc_sampling.h"
 #include "host/image/image_io.h"
 #include "host/util/error.h"
 
@@ -39,8 +40,7 @@ EnvironmentMap make_environment_map(const Film& image)
         const double sin_theta = std::sin(3.14159265358979323846 * (y + 0.5) / h);
         for (std::uint32_t x = 0; x < w; ++x) {
             const Rgba c = image.at(x, y);
-            const double luminance = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-            texel_weights[y][x] = luminance * sin_theta;
+            texel_weights[y][x] = dev::gc_luminance(dev::make_float3(c.r, c.g, c.b)) * sin_theta;
             row_weights[y] += texel_weights[y][x];
         }
         total += row_weights[y];

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "gc_sampling.h"
 #include "gc_tangent.h"
 #include "host/bvh/task_pool.h"
+#include "host/scene/triangle_sink.h"
 #include "host/util/error.h"
 #include "host/util/host_threads.h"
 
@@ -30,18 +32,6 @@ std::uint32_t material_type(MaterialType type)
     return GC_MAT_LAMBERT;
 }
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// In double, for the same reason as triangle_area below: in float the squared length of the
-// cross product overflows for triangles ~1e10 across (and underflows ~1e-10), which left
-// emitters without a normal (no light at all) in scenes of those sizes.
-Normal3 face_normal(const Point3& a, const Point3& b, const Point3& c)
-{
-    const glm::dvec3 n = glm::cross(glm::dvec3(b.glm()) - glm::dvec3(a.glm()), glm::dvec3(c.glm()) - glm::dvec3(a.glm()));
-    const double len = glm::length(n);
-    if (!(len > 0.0) || !std::isfinite(len)) return Normal3(0, 0, 0);
-    return Normal3(static_cast<float>(n.x / len), static_cast<float>(n.y / len), static_cast<float>(n.z / len));
-}
 
 // In double: the cross product's squared length is the fourth power of the triangle's size,
 // which leaves float's range for triangles below ~1e-10 or above ~1e10 units across.
@@ -234,7 +224,7 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene)
         const Point3 a = scene.vertex(tri, 0), b = scene.vertex(tri, 1), c = scene.vertex(tri, 2);
         const float area = static_cast<float>(triangle_area(a, b, c));
         const Material& m = scene.materials[scene.material_ids[tri]];
-        const double power = static_cast<double>(area) * luminance(m.emission);
+        const double power = static_cast<double>(area) * dev::gc_luminance(m.emission);
         if (!(area > 0.0f) || !std::isfinite(area) || !(power > 0.0)) continue;
         dev::GcEmitter e{};
         e.v0 = v4(a);
@@ -262,7 +252,7 @@ float total_emitter_power(const Scene& scene)
     double total = 0.0;
     for (const dev::GcEmitter& e : make_emitters(scene)) {
         const glm::vec3 le = scene.materials[scene.material_ids[e.triangle]].emission;
-        total += static_cast<double>(e.area) * (0.2126 * le.x + 0.7152 * le.y + 0.0722 * le.z);
+        total += static_cast<double>(e.area) * dev::gc_luminance(le);
     }
     return static_cast<float>(total);
 }

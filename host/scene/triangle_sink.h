@@ -18,9 +18,9 @@ struct SinkCorner {
 };
 
 // The geometric normal of a counter-clockwise triangle; +Z for a zero-area one, so that
-// degenerate triangles (kept: files have them) never put a NaN into the scene.
-// (In double: in float the cross product's squared length overflows or underflows for
-// triangles ~1e10 or ~1e-10 across.)
+// degenerate triangles (kept: files have them; no ray hits them) never put a NaN into the
+// scene. In double: in float the cross product's squared length overflows or underflows for
+// triangles ~1e10 or ~1e-10 across, which left emitters of such scenes without a normal.
 inline Normal3 face_normal(const Point3& p0, const Point3& p1, const Point3& p2)
 {
     const glm::dvec3 c = glm::cross(glm::dvec3(p1.glm()) - glm::dvec3(p0.glm()), glm::dvec3(p2.glm()) - glm::dvec3(p0.glm()));

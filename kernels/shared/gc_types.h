@@ -128,7 +128,7 @@ GC_STRUCT(GcTriangleAttribs) {
                   * gc_tangent.h says, when flags has GC_TRIF_HAS_TANGENTS (else 0) */
     float4 n1;   /* the same for v1 */
     float4 n2;   /* the same for v2 */
-    float4 ng;   /* xyz: unit geometric normal (right-handed winding v0 v1 v2); zero if degenerate;
+    float4 ng;   /* xyz: unit geometric normal (right-handed winding v0 v1 v2); +z if degenerate;
                   * w: the largest |coordinate| of the three vertices (gc_spawn_scale) */
     float4 uv01; /* xy: uv at v0; zw: uv at v1 */
     float uv2_u;
