@@ -55,6 +55,7 @@ cmake --build "$build" --target "${targets[@]}" -j "$jobs"
 
 step "ctest -L '$labels'"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+export LSAN_OPTIONS="suppressions=$root/tools/ci/lsan-suppressions.txt${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 # A test failure does not skip the fuzzers: one CI run reports both.
 status=0
 ctest --test-dir "$build" -L "$labels" --output-on-failure -j "$jobs" || status=1
