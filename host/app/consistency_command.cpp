@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "host/app/consistency_report.h"
+#include "host/app/environment.h"
 #include "host/app/lighting_check.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/context.h"
@@ -142,6 +143,7 @@ ExitCode run_consistency(const Options& options)
         run.notes.push_back("nothing lights the scene: rendered with --env 1,1,1");
     }
 
+    const RenderSetup setup = render_setup_from_environment();
     std::string why_none;
     const std::vector<cl::DeviceInfo> devices = cl::list_devices(&why_none);
     if (devices.empty()) run.notes.push_back("OpenCL: no device (" + why_none + ")");
@@ -154,7 +156,7 @@ ExitCode run_consistency(const Options& options)
                                 ": no correctly rounded division/sqrt (CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT): "
                                 "expect more differing pixels");
         const cl::Context context(device);
-        Renderer renderer(context, scene, bvh, camera, settings);
+        Renderer renderer(context, scene, bvh, camera, settings, setup);
         ConsistencyRender r;
         r.api = "opencl";
         r.device = device.device_name;

@@ -8,10 +8,12 @@
 #include <vector>
 
 #include "host/app/consistency_command.h"
+#include "host/app/environment.h"
 #include "host/app/options.h"
 #include "host/app/render_command.h"
 #include "host/app/vk_commands.h"
 #include "host/cl/device.h"
+#include "host/image/image_module.h"
 #include "host/util/error.h"
 #include "host/util/host_threads.h"
 #include "host/util/log.h"
@@ -29,6 +31,8 @@ int main(int argc, char** argv)
             std::puts(version_text().c_str());
             return 0;
         }
+        // Before anything reads or writes an image: the module is found once per process.
+        set_image_module_path(image_module_from_environment());
         set_log_level(options.quiet ? LogLevel::Quiet : (options.verbose ? LogLevel::Verbose : LogLevel::Normal));
         if (options.threads > 0) {
             // Before any OpenCL or Vulkan call: PoCL reads its thread count when it is first

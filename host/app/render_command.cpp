@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "host/app/environment.h"
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
 #include "host/bvh/bvh.h"
@@ -92,7 +93,7 @@ ExitCode run_render(const Options& options)
     const cl::DeviceInfo device = cl::select_device(options.device);
     const cl::Context context(device);
     t0 = Clock::now();
-    Renderer renderer(context, scene, bvh, camera, settings);
+    Renderer renderer(context, scene, bvh, camera, settings, render_setup_from_environment());
     // The device holds its own copy of the scene and the BVH (a CPU device the wide BVH made
     // from it), and the Renderer reads neither after its construction: for the rest of the
     // render they are dead weight, 85 bytes per triangle for the flat BVH alone.

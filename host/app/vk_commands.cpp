@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "host/app/environment.h"
 #include "host/app/lighting_check.h"
 #include "host/bvh/bvh.h"
 #include "host/cl/context.h"
@@ -92,7 +93,8 @@ ExitCode run_cross_check(const Options& options)
     const cl::Context cl_context(device);
     const vk::Context vk_context(options.vk_device);
     log_info("OpenCL: " + device.device_name + " (" + device.platform_name + "); Vulkan: " + vk_context.description());
-    const vk::CrossCheckReport report = vk::cross_check(cl_context, vk_context, scene, bvh, camera, settings);
+    const vk::CrossCheckReport report = vk::cross_check(cl_context, vk_context, scene, bvh, camera, settings,
+                                                        render_setup_from_environment());
     std::fputs(report.format().c_str(), stdout);
     const bool ok = report.passed();
     std::puts(ok ? "cross-check passed" : "cross-check FAILED: OpenCL and Vulkan disagree beyond tolerance");

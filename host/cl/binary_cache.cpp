@@ -69,18 +69,10 @@ std::string to_hex(std::uint64_t value)
     return text;
 }
 
-std::optional<std::filesystem::path> default_cache_dir()
+std::optional<std::filesystem::path> user_cache_dir(std::string_view xdg_cache_home, std::string_view home)
 {
-    auto env = [](const char* name) -> std::string {
-        const char* value = std::getenv(name);
-        return value ? value : "";
-    };
-    if (env("GEOCOLD_NO_CACHE") == "1") return std::nullopt;
-    if (!env("GEOCOLD_CACHE_DIR").empty()) return std::filesystem::path(env("GEOCOLD_CACHE_DIR"));
-    if (!env("XDG_CACHE_HOME").empty())
-        return std::filesystem::path(env("XDG_CACHE_HOME")) / "geocold-cl" / "kernels";
-    if (!env("HOME").empty())
-        return std::filesystem::path(env("HOME")) / ".cache" / "geocold-cl" / "kernels";
+    if (!xdg_cache_home.empty()) return std::filesystem::path(xdg_cache_home) / "geocold-cl" / "kernels";
+    if (!home.empty()) return std::filesystem::path(home) / ".cache" / "geocold-cl" / "kernels";
     return std::nullopt;
 }
 

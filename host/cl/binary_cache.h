@@ -33,9 +33,9 @@ private:
 std::uint64_t fnv1a64(std::span<const unsigned char> data);
 std::string to_hex(std::uint64_t value);  // 16 lowercase hex digits
 
-// GEOCOLD_CACHE_DIR, else $XDG_CACHE_HOME/geocold-cl/kernels, else ~/.cache/geocold-cl/kernels.
-// nullopt when GEOCOLD_NO_CACHE=1 or no home directory is known.
-std::optional<std::filesystem::path> default_cache_dir();
+// The per-user cache folder, following the XDG base directory rules: <xdg_cache_home>/
+// geocold-cl/kernels, else <home>/.cache/geocold-cl/kernels; nullopt when both are empty.
+std::optional<std::filesystem::path> user_cache_dir(std::string_view xdg_cache_home, std::string_view home);
 
 class BinaryCache {
 public:

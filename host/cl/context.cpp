@@ -1,7 +1,6 @@
 #include "host/cl/context.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <string>
 #include <utility>
 
@@ -21,11 +20,6 @@ size_t pick_local_size(const DeviceInfo& device)
     size_t local = 64;
     if (device.is_cpu && !device.is_gpu)
         local = 8 * static_cast<size_t>(device.preferred_vector_width_float);
-    // GEOCOLD_LOCAL_SIZE overrides the choice, for benchmarking work-group shapes.
-    if (const char* env = std::getenv("GEOCOLD_LOCAL_SIZE")) {
-        const long value = std::strtol(env, nullptr, 10);
-        if (value > 0) local = static_cast<size_t>(value);
-    }
     local = std::max<size_t>(1, std::min(local, device.max_work_group_size));
     // Round down to a power of two so global sizes stay friendly.
     size_t pow2 = 1;

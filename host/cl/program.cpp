@@ -130,19 +130,12 @@ cl_program load_binary(const Context& context, const std::vector<unsigned char>&
 // start is as fast without our entry. Writing one costs a lot there: clGetProgramInfo(
 // CL_PROGRAM_BINARIES) makes PoCL compile a generic work-group function for every kernel on
 // top of the ones the launches need (measured, PoCL 3.1, Cornell path integrator: cold start
-// 13.6 s with our entry written, 7.3 s without; warm 0.7 s either way). POCL_KERNEL_CACHE=0
-// turns PoCL's cache off, and then ours is the only one.
-bool driver_caches_builds(const DeviceInfo& device)
+// 13.6 s with our entry written, 7.3 s without; warm 0.7 s either way). With PoCL's cache
+// turned off (BuildConfig::driver_cache_disabled), ours is the only one.
+bool driver_caches_builds(const DeviceInfo& device, const BuildConfig& config)
 {
     if (device.platform_name.find("Portable Computing Language") == std::string::npos) return false;
-    const char* kcache = std::getenv("POCL_KERNEL_CACHE");
-    return !(kcache && kcache[0] == '0');
-}
-
-bool store_forced(const BuildConfig& config)
-{
-    const char* env = std::getenv("GEOCOLD_CACHE_ALWAYS");
-    return config.store_when_driver_caches || (env && env[0] == '1');
+    return !config.driver_cache_disabled;
 }
 
 }  // namespace
@@ -153,11 +146,11 @@ bool is_kernel_dir(const fs::path& dir)
     return !dir.empty() && fs::is_regular_file(dir / "shared" / "gc_types.h", ec);
 }
 
-fs::path find_kernel_dir()
+fs::path find_kernel_dir(const fs::path& chosen)
 {
-    if (const char* env = std::getenv("GEOCOLD_KERNEL_DIR"); env && *env) {
-        if (is_kernel_dir(env)) return fs::path(env);
-        throw DeviceError(std::string("GEOCOLD_KERNEL_DIR=") + env +
+    if (!chosen.empty()) {
+        if (is_kernel_dir(chosen)) return chosen;
+        throw DeviceError("the kernel directory " + chosen.string() +
                           " is not a geocold-cl kernel directory (no shared/gc_types.h in it)");
     }
     std::vector<fs::path> tried;
@@ -183,7 +176,7 @@ Program::Program(const Context& context, const std::string& file, const std::str
 {
     const auto start = std::chrono::steady_clock::now();
     const DeviceInfo& device = context.device();
-    const fs::path kernel_dir = config.kernel_dir.empty() ? find_kernel_dir() : config.kernel_dir;
+    const fs::path kernel_dir = find_kernel_dir(config.kernel_dir);
     const fs::path source = kernel_dir / file;
     if (!fs::is_regular_file(source))
         throw DeviceError("kernel source not found: " + source.string());
@@ -201,11 +194,7 @@ Program::Program(const Context& context, const std::string& file, const std::str
     if (!options.empty()) m_options += " " + options;
 
     std::optional<BinaryCache> cache;
-    if (config.use_cache) {
-        const std::optional<fs::path> dir =
-            config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
-        if (dir) cache.emplace(*dir);
-    }
+    if (config.use_cache && !config.cache_dir.empty()) cache.emplace(config.cache_dir);
     if (cache) {
         m_key = compute_cache_key(file, m_options, device);
         std::string why;
@@ -221,7 +210,7 @@ Program::Program(const Context& context, const std::string& file, const std::str
     }
     if (!m_program) {
         m_program = build_from_source(context);
-        if (cache && driver_caches_builds(device) && !store_forced(config)) {
+        if (cache && driver_caches_builds(device, config) && !config.store_when_driver_caches) {
             log_verbose("not caching " + file + ": " + device.platform_name + " keeps its own kernel cache");
         } else if (cache) {
             // Best effort: a cache that cannot be written costs the next start a compile.

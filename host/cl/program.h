@@ -15,19 +15,22 @@ namespace gc::cl {
 // True when dir holds shared/gc_types.h (what every kernel includes).
 bool is_kernel_dir(const std::filesystem::path& dir);
 
-// The kernel source directory: $GEOCOLD_KERNEL_DIR (an error if set but not a kernel dir),
-// else the source tree's kernels/ compiled in, else <exe dir>/../share/geocold-cl/kernels (an
-// installed copy). Throws DeviceError naming every place tried.
-std::filesystem::path find_kernel_dir();
+// The kernel source directory: `chosen` when not empty (a DeviceError if it is not a kernel
+// dir), else the source tree's kernels/ compiled in, else <exe dir>/../share/geocold-cl/kernels
+// (an installed copy). Throws DeviceError naming every place tried.
+std::filesystem::path find_kernel_dir(const std::filesystem::path& chosen = {});
 
 struct BuildConfig {
-    std::filesystem::path kernel_dir;  // empty: find_kernel_dir()
-    std::filesystem::path cache_dir;   // empty: default_cache_dir() (env-controlled)
+    std::filesystem::path kernel_dir;  // empty: find_kernel_dir()'s search
+    std::filesystem::path cache_dir;   // the binary cache; empty: no cache
     bool use_cache = true;             // false: always compile, never read or write the cache
     // Write entries even for a driver that keeps its own build cache (PoCL's kcache), where
-    // by default we only read them: see driver_caches_builds() in program.cpp. Also forced by
-    // GEOCOLD_CACHE_ALWAYS=1 (tests of the cache itself).
+    // by default we only read them: see driver_caches_builds() in program.cpp. For the tests
+    // of the cache itself, and for users who want ours filled anyway.
     bool store_when_driver_caches = false;
+    // The driver's own build cache is switched off (PoCL: POCL_KERNEL_CACHE=0), so ours is the
+    // only one and is written on every driver.
+    bool driver_cache_disabled = false;
 };
 
 // One program built from one top-level .cl file of the kernel directory, for the context's

@@ -1,6 +1,5 @@
 #include "host/image/image_module.h"
 
-#include <cstdlib>
 #include <filesystem>
 #include <future>
 #include <mutex>
@@ -19,9 +18,9 @@ struct Loaded {
     std::string error;
 };
 
-std::vector<fs::path> candidates()
+std::vector<fs::path> candidates(const fs::path& chosen)
 {
-    if (const char* env = std::getenv("GEOCOLD_IMAGE_MODULE"); env && *env) return {fs::path(env)};
+    if (!chosen.empty()) return {chosen};
     std::vector<fs::path> paths;
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -35,9 +34,9 @@ std::vector<fs::path> candidates()
     return paths;
 }
 
-Loaded load()
+Loaded load(const fs::path& chosen)
 {
-    const std::vector<fs::path> paths = candidates();
+    const std::vector<fs::path> paths = candidates(chosen);
     const fs::path* found = nullptr;
     std::error_code ec;
     for (const fs::path& path : paths) {
@@ -46,7 +45,7 @@ Loaded load()
             break;
         }
     }
-    // With GEOCOLD_IMAGE_MODULE set, let dlopen itself say what is wrong with that one file.
+    // With the module chosen, let dlopen itself say what is wrong with that one file.
     if (!found && paths.size() == 1) found = &paths.front();
     if (!found) {
         std::string list;
@@ -74,6 +73,7 @@ Loaded load()
 }
 
 std::mutex g_mutex;
+fs::path g_chosen;  // set_image_module_path's file; empty: search
 // From std::async: the last reference, destroyed at exit, waits for a load still running,
 // so the process never tears down under the dynamic linker.
 std::shared_future<Loaded> g_load;
@@ -82,14 +82,20 @@ void start_locked(std::launch policy)
 {
     if (g_load.valid()) return;
     try {
-        g_load = std::async(policy, load).share();
+        g_load = std::async(policy, load, g_chosen).share();
     } catch (const std::system_error&) {
         // No thread to be had: load when asked.
-        g_load = std::async(std::launch::deferred, load).share();
+        g_load = std::async(std::launch::deferred, load, g_chosen).share();
     }
 }
 
 }  // namespace
+
+void set_image_module_path(const std::filesystem::path& path)
+{
+    const std::lock_guard<std::mutex> lock(g_mutex);
+    g_chosen = path;
+}
 
 void start_loading_image_module()
 {

@@ -3,13 +3,14 @@
 // other start-up work.
 //
 // Where it looks, first match wins:
-//   $GEOCOLD_IMAGE_MODULE          when set: that file and nothing else
+//   set_image_module_path's file   when set: that file and nothing else
 //   <dir of the executable>/geocold-image-oiio.so         (the build tree)
 //   <dir of the executable>/../lib/geocold-cl/geocold-image-oiio.so   (cmake --install)
 //   the build tree's module, by the absolute path compiled in (tests and tools that live in
 //   other build folders)
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "host/image/image_codec.h"
@@ -19,6 +20,10 @@ namespace gc {
 // The module's file name and its folder under an install prefix (CMake installs it there).
 inline constexpr const char* k_image_module_name = "geocold-image-oiio.so";
 inline constexpr const char* k_image_module_install_dir = "lib/geocold-cl";
+
+// Loads `path` and nothing else (empty: search the usual places). The process's front end
+// decides where the module is; this takes effect only before the first load starts.
+void set_image_module_path(const std::filesystem::path& path);
 
 // Starts loading the module on a background thread and returns at once; a no-op after the
 // first call. A program that exits while the load runs waits for it at exit.

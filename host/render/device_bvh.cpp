@@ -1,13 +1,11 @@
 #include "host/render/device_bvh.h"
 
 #include "host/bvh/widen.h"
-#include "host/util/env_choice.h"
 
 namespace gc {
-BvhLayout bvh_layout_for(const cl::DeviceInfo& device)
+BvhLayout bvh_layout_for(const cl::DeviceInfo& device, std::optional<BvhLayout> chosen)
 {
-    if (const auto width = env_choice("GEOCOLD_BVH_WIDTH", {"2", "4", "8"}, "2, 4 or 8"))
-        return *width == "8" ? BvhLayout::Wide8 : (*width == "4" ? BvhLayout::Wide : BvhLayout::Binary);
+    if (chosen) return *chosen;
     // A GPU runs a warp of rays in lock step, and a float4 there is four scalar instructions:
     // the BVH2 measured faster (H200: dragon diffuse 1229 vs 1040 Mrays/s with the BVH4).
     // CPUs gain from the wide tests: BVH4 over BVH2 1.2-1.6x, and BVH8 over BVH4 where the

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "host/bvh/flatten.h"
@@ -18,9 +19,8 @@ namespace gc {
 
 enum class BvhLayout { Binary, Wide, Wide8 };
 
-// BVH8 or BVH4 on CPUs, BVH2 on GPUs; GEOCOLD_BVH_WIDTH=2|4|8 overrides (A/B benchmarks,
-// tests). Throws UsageError for any other value.
-BvhLayout bvh_layout_for(const cl::DeviceInfo& device);
+// `chosen` when set (A/B benchmarks, tests), else BVH8 or BVH4 on CPUs, BVH2 on GPUs.
+BvhLayout bvh_layout_for(const cl::DeviceInfo& device, std::optional<BvhLayout> chosen = std::nullopt);
 
 // "" for the BVH2, "-D GC_BVH_WIDE" for the BVH4, "-D GC_BVH_WIDE -D GC_BVH_WIDE8" for the BVH8.
 std::string program_options(BvhLayout layout);

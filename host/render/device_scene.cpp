@@ -13,13 +13,13 @@ std::uint64_t DeviceScene::bytes() const
 }
 
 DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
-                                const EnvironmentMap& environment)
+                                const EnvironmentMap& environment, const DeviceTuning& tuning)
 {
     DeviceScene d;
     const DeviceTextures textures = make_textures(scene);
     const std::vector<dev::GcEmitter> emitters = make_emitters(scene);
     const std::vector<dev::GcPointLight> lights = make_point_lights(scene);
-    d.bvh = DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()));
+    d.bvh = DeviceBvh::upload(context, bvh, bvh_layout_for(context.device(), tuning.bvh_layout));
     auto attribs = std::make_shared<const BigArray<dev::GcTriangleAttribs>>(make_triangle_attribs(scene));
     d.attribs = cl::Buffer<dev::GcTriangleAttribs>::over_host(context, *attribs, "triangle attributes");
     if (context.device().is_cpu) d.host_attribs = std::move(attribs);
@@ -38,7 +38,7 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     d.texture_count = static_cast<std::uint32_t>(textures.textures.size());
     d.env_width = environment.width;
     d.env_height = environment.height;
-    d.features = kernel_features(materials, lights.size(), environment.width > 0);
+    d.features = kernel_features(materials, lights.size(), environment.width > 0, tuning.kernel_features);
     return d;
 }
 

@@ -11,6 +11,7 @@
 #include "host/bvh/bvh.h"
 #include "host/cl/buffer.h"
 #include "host/render/device_bvh.h"
+#include "host/render/device_tuning.h"
 #include "host/render/environment.h"
 #include "host/render/kernel_features.h"
 #include "host/scene/scene.h"
@@ -21,7 +22,7 @@ struct DeviceScene {
     // The triangle attributes' host array, which CPU devices read in place (like the wide
     // BVH's arrays in DeviceBvh). Declared before the buffers so that it outlives them.
     std::shared_ptr<const BigArray<dev::GcTriangleAttribs>> host_attribs;
-    DeviceBvh bvh;  // BVH2 or BVH4, as bvh_layout_for(device) chose
+    DeviceBvh bvh;  // BVH2 or BVH4, as bvh_layout_for chose
     cl::Buffer<dev::GcTriangleAttribs> attribs;
     cl::Buffer<dev::GcMaterial> materials;
     cl::Buffer<dev::GcTexture> textures;
@@ -65,7 +66,7 @@ struct DeviceScene {
     }
 
     static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
-                              const EnvironmentMap& environment = {});
+                              const EnvironmentMap& environment = {}, const DeviceTuning& tuning = {});
 };
 
 }  // namespace gc

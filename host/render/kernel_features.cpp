@@ -2,16 +2,8 @@
 
 #include <utility>
 
-#include "host/util/env_choice.h"
-
 namespace gc {
 namespace {
-
-bool specialise_for_scene()
-{
-    const auto value = env_choice("GEOCOLD_KERNEL_FEATURES", {"scene", "all"}, "'scene' or 'all'");
-    return !value || *value == "scene";
-}
 
 bool has_texture(const dev::GcMaterial& m)
 {
@@ -28,9 +20,10 @@ void add_define(std::string& options, const char* name, const std::string& value
 
 }  // namespace
 
-KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::size_t point_lights, bool env_map)
+KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::size_t point_lights, bool env_map,
+                               KernelFeatureSet set)
 {
-    if (!specialise_for_scene()) return {};
+    if (set == KernelFeatureSet::All) return {};
     KernelFeatures f;
     f.textures = f.normal_maps = f.alpha_mask = f.alpha_blend = false;
     f.material_types = 0u;

@@ -6,8 +6,8 @@
 //     const KernelFeatures features = kernel_features(materials, point_lights, has_env_map);
 //     cl::Program program(context, "megakernel.cl", program_options(features));
 //
-// GEOCOLD_KERNEL_FEATURES=all builds the full program instead (for A/B comparisons and the
-// tests that check the bits agree); "scene" is the default.
+// KernelFeatureSet::All builds the full program instead (for A/B comparisons and the tests
+// that check the bits agree).
 #pragma once
 
 #include <cstdint>
@@ -15,6 +15,7 @@
 #include <string>
 
 #include "gc_types.h"
+#include "host/render/device_tuning.h"
 
 namespace gc {
 
@@ -30,9 +31,10 @@ struct KernelFeatures {
     bool operator==(const KernelFeatures&) const = default;
 };
 
-// What the scene with these device materials and lights uses; every feature on when
-// GEOCOLD_KERNEL_FEATURES=all. Throws UsageError for a value other than "all" or "scene".
-KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::size_t point_lights, bool env_map);
+// What the scene with these device materials and lights uses; every feature on for
+// KernelFeatureSet::All.
+KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::size_t point_lights, bool env_map,
+                               KernelFeatureSet set = KernelFeatureSet::Scene);
 
 // "-D GC_USE_TEXTURES=0 ..." for the features that are off (and GC_USE_MATERIALS when not
 // every type is present); "" for the full program.

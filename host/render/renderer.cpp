@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gc_packet_lanes.h"
 #include "host/render/environment.h"
 #include "host/render/scene_convert.h"
-#include "host/util/env_choice.h"
 #include "host/util/error.h"
 
 namespace gc {
@@ -36,10 +36,10 @@ void copy_counter(const cl::Context& context, const cl::Buffer<std::uint32_t>& c
 // over ~200 KB; one long-running item per group keeps them in L1. H200 box, PoCL 5 on 16
 // cores, Cornell 512^2 path, medians of 3 x 5: local 128 5.55, 16 6.04, 4 6.54, 1 6.76
 // Msamples/s; the dragon 320x240 is flat (26.6 / 26.7 / 27.0 / 26.3). GPUs keep the
-// context's size; GEOCOLD_LOCAL_SIZE still overrides both.
+// context's size.
 std::size_t megakernel_local_size(const cl::Context& context)
 {
-    if (context.device().is_gpu || std::getenv("GEOCOLD_LOCAL_SIZE")) return 0;  // 0: the context's default
+    if (context.device().is_gpu) return 0;  // 0: the context's default
     return 1;
 }
 
@@ -56,27 +56,27 @@ constexpr std::uint32_t kLeastPredictedItemsPerUnit = 64;
 // GPUs size each launch after the first bounce from the last batch's queue lengths. H200, 2^24
 // paths per pass, path samples/s, 3 interleaved rounds (Cornell box / dragon / 5.2M triangles):
 // against 4096 work-items per unit on every batch 1.024x / 1.018x / 1.114x, against one per
-// queue entry 1.061x / 1.201x / 1.026x. GEOCOLD_WAVEFRONT_GRID=N fixes N per compute unit
-// instead, on any device (A/B runs; tests use 1 to run the kernels' loops everywhere; 0: one
-// work-item per entry). CPUs read the lengths back (run_path_batch), so one per entry is exact.
-WavefrontLaunches wavefront_launches(const cl::DeviceInfo& device, std::uint32_t max_depth)
+// queue entry 1.061x / 1.201x / 1.026x. DeviceTuning::wavefront_items_per_unit fixes the width
+// instead, on any device. CPUs read the lengths back (run_path_batch), so one per entry is exact.
+WavefrontLaunches wavefront_launches(const cl::DeviceInfo& device, std::uint32_t max_depth,
+                                     const DeviceTuning& tuning)
 {
     const std::uint32_t units = std::max<std::uint32_t>(device.compute_units, 1u);
     std::optional<std::uint32_t> fixed;
-    if (const auto per_unit = env_choice("GEOCOLD_WAVEFRONT_GRID", {"0", "1", "64", "256", "512", "1024", "2048", "4096", "8192"},
-                                         "0, 1, 64, 256, 512, 1024, 2048, 4096 or 8192"))
-        fixed = static_cast<std::uint32_t>(std::stoul(*per_unit)) * units;
+    if (tuning.wavefront_items_per_unit) fixed = *tuning.wavefront_items_per_unit * units;
     const std::uint32_t first = device.is_gpu ? kGpuFirstBatchItemsPerUnit * units : 0u;
     return WavefrontLaunches(max_depth, fixed, first, kLeastPredictedItemsPerUnit * units);
 }
 
 }  // namespace
 
-bool path_megakernel_for(const cl::DeviceInfo& device)
+bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form)
 {
-    // GEOCOLD_PATH_KERNEL=wavefront|megakernel overrides the choice (benchmarking, A/B).
-    if (const auto form = env_choice("GEOCOLD_PATH_KERNEL", {"wavefront", "megakernel"}, "'wavefront' or 'megakernel'"))
-        return *form == "megakernel";
+    switch (form) {
+    case PathKernelForm::Wavefront: return false;
+    case PathKernelForm::Megakernel: return true;
+    case PathKernelForm::Auto: break;
+    }
     return !device.is_gpu;
 }
 
@@ -107,15 +107,16 @@ std::uint32_t default_wavefront_size(const cl::DeviceInfo& device)
 }
 
 Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
-                   const RenderSettings& settings)
+                   const RenderSettings& settings, const RenderSetup& setup)
     : m_context(context),
       m_settings(settings),
-      m_scene(DeviceScene::upload(context, scene, bvh, load_environment_map(settings))),
-      m_megakernel(settings.integrator == IntegratorKind::Path && path_megakernel_for(context.device())),
+      m_scene(DeviceScene::upload(context, scene, bvh, load_environment_map(settings), setup.tuning)),
+      m_megakernel(settings.integrator == IntegratorKind::Path &&
+                   path_megakernel_for(context.device(), setup.tuning.path_kernel)),
       m_program(context, integrator_program(settings.integrator, m_megakernel),
-                program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features)),
+                program_options(m_scene.bvh.layout()) + " " + program_options(m_scene.features), setup.build),
       m_planner(settings.samples_per_pass),
-      m_launches(wavefront_launches(context.device(), settings.max_depth))
+      m_launches(wavefront_launches(context.device(), settings.max_depth, setup.tuning))
 {
     // On CPUs (PoCL) the host reads the queue counters back after each shade pass and launches
     // the next stages over the live paths only, stopping once none is left: an early-returning
@@ -123,10 +124,8 @@ Renderer::Renderer(const cl::Context& context, const Scene& scene, const FlatBvh
     // from host memory is nearly free there. GPUs keep launching without a read-back (the
     // pbrt-v4 scheme), since a blocking read per bounce would stall the queue (0.93x on an
     // H200), and size the launches from the last batch instead (m_launches). Either way every
-    // slot gets the same work, so the image is the same bits. GEOCOLD_WAVEFRONT_SYNC=0/1
-    // overrides the choice (benchmarking, like GEOCOLD_LOCAL_SIZE).
-    m_sync_counts = !context.device().is_gpu;
-    if (const char* env = std::getenv("GEOCOLD_WAVEFRONT_SYNC"); env && *env) m_sync_counts = env[0] != '0';
+    // slot gets the same work, so the image is the same bits. DeviceTuning can fix the choice.
+    m_sync_counts = setup.tuning.wavefront_sync_counts.value_or(!context.device().is_gpu);
 
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width) * static_cast<std::uint32_t>(settings.height);
     const std::uint32_t wavefront = settings.wavefront_size ? settings.wavefront_size : default_wavefront_size(context.device());

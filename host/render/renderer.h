@@ -17,6 +17,8 @@
 #include "host/cl/program.h"
 #include "host/image/film.h"
 #include "host/render/device_scene.h"
+#include "host/render/device_tuning.h"
+#include "host/render/render_setup.h"
 #include "host/render/pass_planner.h"
 #include "host/render/render_settings.h"
 #include "host/render/wavefront_launches.h"
@@ -26,8 +28,9 @@ namespace gc {
 
 class Renderer {
 public:
+    // `setup` changes the speed and where the kernels come from, never the image.
     Renderer(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
-             const RenderSettings& settings);
+             const RenderSettings& settings, const RenderSetup& setup = {});
 
     // Adds one sample to every pixel (several kernel passes if the image is larger than the
     // wavefront). Enqueues work and waits for it.
@@ -108,8 +111,9 @@ private:
 
 // The program file each integrator is built from.
 // The path integrator's form on `device`: one kernel per path (megakernel.cl) on CPUs, the
-// wavefront stages (wavefront.cl) on GPUs; both give the same bits on one device.
-bool path_megakernel_for(const cl::DeviceInfo& device);
+// wavefront stages (wavefront.cl) on GPUs, unless `form` names one; both give the same bits
+// on one device.
+bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form = PathKernelForm::Auto);
 const char* integrator_program(IntegratorKind kind, bool megakernel);
 
 // Default paths in flight per pass: as many as a GPU's memory allows up to 2^24 (its passes'

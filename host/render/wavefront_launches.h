@@ -24,7 +24,8 @@ std::uint32_t wavefront_launch_size(std::uint32_t entries, std::uint32_t width);
 // with a fixed width, every launch after the first bounce holds at most that width.
 class WavefrontLaunches {
 public:
-    // fixed_width: no prediction, this width after the first bounce (GEOCOLD_WAVEFRONT_GRID).
+    // fixed_width: no prediction, this width after the first bounce
+    // (DeviceTuning::wavefront_items_per_unit).
     // first_width: the width until a batch is recorded. min_width: the least predicted width
     // (a few work-groups per compute unit, so a queue that grew since still spreads out).
     WavefrontLaunches(std::uint32_t max_depth, std::optional<std::uint32_t> fixed_width, std::uint32_t first_width,

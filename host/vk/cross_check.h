@@ -12,6 +12,7 @@
 
 #include "host/bvh/bvh.h"
 #include "host/cl/context.h"
+#include "host/render/render_setup.h"
 #include "host/render/render_settings.h"
 #include "host/scene/scene.h"
 #include "host/vk/agreement.h"
@@ -41,6 +42,7 @@ struct CrossCheckReport {
 // Renders with both APIs. settings: width, height, spp, seed, max_depth, rr_depth,
 // env_radiance and env_map_path are used; the integrator fields are set per pass.
 CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_context, const Scene& scene,
-                             const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings);
+                             const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings,
+                             const RenderSetup& setup = {});
 
 }  // namespace gc::vk

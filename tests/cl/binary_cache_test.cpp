@@ -13,7 +13,6 @@
 namespace gc::cl {
 namespace {
 
-using test::ScopedEnv;
 using test::TempDir;
 
 std::vector<unsigned char> bytes_of(const std::string& text)
@@ -119,22 +118,13 @@ TEST(BinaryCache, StoreFailsSoftlyWhenDirectoryIsAFile)
     EXPECT_FALSE(why.empty());
 }
 
-TEST(DefaultCacheDir, EnvironmentOrder)
+TEST(UserCacheDir, XdgCacheHomeThenHome)
 {
-    ScopedEnv no_cache("GEOCOLD_NO_CACHE", nullptr);
-    ScopedEnv cache_dir("GEOCOLD_CACHE_DIR", nullptr);
-    ScopedEnv xdg("XDG_CACHE_HOME", nullptr);
-    ScopedEnv home("HOME", "/home/someone");
-    EXPECT_EQ(default_cache_dir(),
+    EXPECT_EQ(user_cache_dir("", "/home/someone"),
               std::filesystem::path("/home/someone/.cache/geocold-cl/kernels"));
-    {
-        ScopedEnv set_xdg("XDG_CACHE_HOME", "/xdg");
-        EXPECT_EQ(default_cache_dir(), std::filesystem::path("/xdg/geocold-cl/kernels"));
-        ScopedEnv set_dir("GEOCOLD_CACHE_DIR", "/explicit");
-        EXPECT_EQ(default_cache_dir(), std::filesystem::path("/explicit"));
-        ScopedEnv disable("GEOCOLD_NO_CACHE", "1");
-        EXPECT_EQ(default_cache_dir(), std::nullopt);
-    }
+    EXPECT_EQ(user_cache_dir("/xdg", "/home/someone"),
+              std::filesystem::path("/xdg/geocold-cl/kernels"));
+    EXPECT_EQ(user_cache_dir("", ""), std::nullopt);
 }
 
 }  // namespace

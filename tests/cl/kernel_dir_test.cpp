@@ -9,11 +9,8 @@
 namespace gc::cl {
 namespace {
 
-using test::ScopedEnv;
-
 TEST(KernelDir, DefaultIsTheSourceTree)
 {
-    ScopedEnv unset("GEOCOLD_KERNEL_DIR", nullptr);
     const auto dir = find_kernel_dir();
     std::printf("kernel dir: %s\n", dir.string().c_str());
     EXPECT_TRUE(is_kernel_dir(dir));
@@ -21,19 +18,17 @@ TEST(KernelDir, DefaultIsTheSourceTree)
         std::filesystem::equivalent(dir, std::filesystem::path(GC_TEST_SOURCE_DIR) / "kernels"));
 }
 
-TEST(KernelDir, EnvironmentOverrides)
+TEST(KernelDir, ChosenDirectoryOverrides)
 {
     test::TempKernelDir temp;
-    ScopedEnv set("GEOCOLD_KERNEL_DIR", temp.path().c_str());
-    EXPECT_EQ(find_kernel_dir(), temp.path());
+    EXPECT_EQ(find_kernel_dir(temp.path()), temp.path());
 }
 
-TEST(KernelDir, BadEnvironmentIsAnError)
+TEST(KernelDir, ChosenDirectoryWithoutKernelsIsAnError)
 {
     test::TempDir empty;
-    ScopedEnv set("GEOCOLD_KERNEL_DIR", empty.path().c_str());
     try {
-        find_kernel_dir();
+        find_kernel_dir(empty.path());
         FAIL() << "no error for a kernel dir without shared/gc_types.h";
     } catch (const DeviceError& e) {
         EXPECT_NE(std::string(e.what()).find(empty.path().string()), std::string::npos) << e.what();

@@ -188,10 +188,10 @@ TEST_F(ProgramTest, CacheCanBeDisabled)
     EXPECT_FALSE(Program(*context, "compute.cl", "", off).from_cache());
     EXPECT_TRUE(fs::is_empty(cache.path()));
 
-    test::ScopedEnv no_cache("GEOCOLD_NO_CACHE", "1");
-    BuildConfig env_default{dir.path(), {}, true};
-    EXPECT_FALSE(Program(*context, "compute.cl", "", env_default).from_cache());
-    EXPECT_FALSE(Program(*context, "compute.cl", "", env_default).from_cache());
+    // No cache folder, no cache.
+    const BuildConfig nowhere{dir.path(), {}, true};
+    EXPECT_FALSE(Program(*context, "compute.cl", "", nowhere).from_cache());
+    EXPECT_FALSE(Program(*context, "compute.cl", "", nowhere).from_cache());
 }
 
 // PoCL caches builds itself; by default we then read entries but do not write them, because
@@ -200,8 +200,6 @@ TEST_F(ProgramTest, PoclBuildsAreLeftToPoclsOwnCache)
 {
     if (context->device().platform_name.find("Portable Computing Language") == std::string::npos)
         GTEST_SKIP() << "not a PoCL device";
-    test::ScopedEnv kcache("POCL_KERNEL_CACHE", nullptr);
-    test::ScopedEnv always("GEOCOLD_CACHE_ALWAYS", nullptr);
     BuildConfig plain = config;
     plain.store_when_driver_caches = false;
     const Program program(*context, "compute.cl", "", plain);
@@ -210,16 +208,15 @@ TEST_F(ProgramTest, PoclBuildsAreLeftToPoclsOwnCache)
     EXPECT_TRUE(fs::is_empty(cache.path())) << "a PoCL build wrote a binary cache entry";
 
     // With PoCL's cache off, ours is the only one and is written again.
-    test::ScopedEnv off("POCL_KERNEL_CACHE", "0");
+    plain.driver_cache_disabled = true;
     const Program uncached(*context, "compute.cl", "", plain);
-    EXPECT_FALSE(fs::is_empty(cache.path())) << "POCL_KERNEL_CACHE=0 but no entry of ours";
+    EXPECT_FALSE(fs::is_empty(cache.path())) << "PoCL's cache is off but no entry of ours";
 }
 
-TEST_F(ProgramTest, KernelDirFromEnvironment)
+TEST_F(ProgramTest, KernelDirFromConfig)
 {
-    test::ScopedEnv env("GEOCOLD_KERNEL_DIR", dir.path().c_str());
-    BuildConfig from_env{{}, cache.path(), true};
-    Program program(*context, "compute.cl", "", from_env);
+    const BuildConfig chosen{dir.path(), cache.path(), true};
+    Program program(*context, "compute.cl", "", chosen);
     expect_plausible(run(program));
     EXPECT_NE(program.options().find("-I " + (dir.path() / "shared").string()), std::string::npos);
 }

@@ -52,16 +52,11 @@ TEST(KernelFeatures, EachFeatureIsSeen)
     EXPECT_EQ(program_options(f), "-D GC_USE_MATERIALS=" + std::to_string(f.material_types) + "u");
 }
 
-TEST(KernelFeatures, AllBuildsTheFullProgramAndABadValueIsAUsageError)
+TEST(KernelFeatures, AllBuildsTheFullProgram)
 {
     const std::vector<dev::GcMaterial> materials{material(GC_MAT_LAMBERT)};
-    ::setenv("GEOCOLD_KERNEL_FEATURES", "all", 1);
-    const KernelFeatures all = kernel_features(materials, 0, false);
-    ::setenv("GEOCOLD_KERNEL_FEATURES", "scene", 1);
-    const KernelFeatures scene = kernel_features(materials, 0, false);
-    ::setenv("GEOCOLD_KERNEL_FEATURES", "none", 1);
-    EXPECT_THROW(kernel_features(materials, 0, false), UsageError);
-    ::unsetenv("GEOCOLD_KERNEL_FEATURES");
+    const KernelFeatures all = kernel_features(materials, 0, false, KernelFeatureSet::All);
+    const KernelFeatures scene = kernel_features(materials, 0, false, KernelFeatureSet::Scene);
     EXPECT_EQ(all, KernelFeatures{});
     EXPECT_EQ(program_options(all), "");
     EXPECT_NE(program_options(scene), "");

@@ -61,6 +61,14 @@ TEST_F(DeterminismTest, SameRenderTwiceIsBitIdentical)
     EXPECT_FALSE(bit_identical(a.mean, other.mean));
 }
 
+// The path integrator in `form`, the rest of the tuning left to the device.
+RenderSetup path_kernel(PathKernelForm form)
+{
+    RenderSetup setup;
+    setup.tuning.path_kernel = form;
+    return setup;
+}
+
 // A 40x30 path render, small enough to run every grouping on every device.
 RenderSettings small_path_render(std::uint32_t spp, std::uint32_t seed)
 {
@@ -93,14 +101,15 @@ std::string shown(const std::vector<std::uint32_t>& passes)
 // Renders s.spp samples through render_samples (grouped as the renderer plans them) and
 // checks the films against one sample per pass; returns the samples of each pass.
 std::vector<std::uint32_t> expect_grouping_keeps_bits(const cl::Context& context, const Scene& scene,
-                                                      const Camera& camera, const RenderSettings& s)
+                                                      const Camera& camera, const RenderSettings& s,
+                                                      const RenderSetup& setup)
 {
     RenderSettings one_per_pass = s;
     one_per_pass.samples_per_pass = 1;
-    const validation::Rendered single = validation::render(context, scene, camera, one_per_pass);
+    const validation::Rendered single = validation::render(context, scene, camera, one_per_pass, setup);
 
     const FlatBvh bvh = build_bvh(scene);
-    Renderer grouped(context, scene, bvh, camera, s);
+    Renderer grouped(context, scene, bvh, camera, s, setup);
     const std::vector<std::uint32_t> passes = render_in_passes(grouped, s.spp);
     const bool mean_same = bit_identical(single.mean, grouped.film());
     const bool variance_same = bit_identical(single.variance, grouped.variance());
@@ -122,10 +131,11 @@ TEST_F(DeterminismTest, SamplesGroupedPerPassGiveTheSameBits)
     RenderSettings s = small_path_render(11, 5);
     s.wavefront_size = 4000;  // the wavefront holds 3 samples of the 1200 pixels
     s.samples_per_pass = 3;   // and the megakernel is told 3: passes of 3, 3, 3, 2 either way
-    for (const char* form : {"wavefront", "megakernel"}) {
-        const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", form);
-        const std::vector<std::uint32_t> passes = expect_grouping_keeps_bits(*context, scene, camera, s);
-        EXPECT_EQ(passes, (std::vector<std::uint32_t>{3, 3, 3, 2})) << form;
+    for (const PathKernelForm form : {PathKernelForm::Wavefront, PathKernelForm::Megakernel}) {
+        const std::vector<std::uint32_t> passes =
+            expect_grouping_keeps_bits(*context, scene, camera, s, path_kernel(form));
+        EXPECT_EQ(passes, (std::vector<std::uint32_t>{3, 3, 3, 2}))
+            << (form == PathKernelForm::Megakernel ? "megakernel" : "wavefront");
     }
 }
 
@@ -137,17 +147,17 @@ TEST_F(DeterminismTest, WavefrontLaunchesNarrowerThanTheirQueuesGiveTheSameBits)
     // compute unit (a work-group or a few: far below the 3 x 1200 paths of a pass on any
     // device), every path must still be traced and shaded exactly once: the films equal those
     // of one work-item per queue entry.
-    const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", "wavefront");
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
     const Camera camera = validation::cornell_camera();
     RenderSettings s = small_path_render(6, 7);
     s.rr_depth = 2;
     s.wavefront_size = 4000;
     validation::Rendered rendered[2];
-    const char* grids[2] = {"0", "1"};
+    const std::uint32_t items_per_unit[2] = {0, 1};
     for (int i = 0; i < 2; ++i) {
-        const cl::test::ScopedEnv grid("GEOCOLD_WAVEFRONT_GRID", grids[i]);
-        rendered[i] = validation::render(*context, scene, camera, s);
+        RenderSetup setup = path_kernel(PathKernelForm::Wavefront);
+        setup.tuning.wavefront_items_per_unit = items_per_unit[i];
+        rendered[i] = validation::render(*context, scene, camera, s, setup);
     }
     const bool mean_same = bit_identical(rendered[0].mean, rendered[1].mean);
     const bool variance_same = bit_identical(rendered[0].variance, rendered[1].variance);
@@ -165,7 +175,6 @@ TEST_F(DeterminismTest, QueueLengthsCopiedOnTheDeviceEqualThoseReadBack)
     // batch runs (GPUs) and read after the pass; CPUs read each bounce's back as it ends. Both
     // must be the batch's true lengths, depth by depth: a copy from the wrong counter or into
     // the wrong slot would size every launch from another queue.
-    const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", "wavefront");
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
     const Camera camera = validation::cornell_camera();
     RenderSettings s = small_path_render(1, 9);
@@ -173,9 +182,10 @@ TEST_F(DeterminismTest, QueueLengthsCopiedOnTheDeviceEqualThoseReadBack)
     s.max_depth = 6;
     std::vector<std::uint32_t> lengths[2];
     for (int i = 0; i < 2; ++i) {
-        const cl::test::ScopedEnv sync("GEOCOLD_WAVEFRONT_SYNC", i == 0 ? "1" : "0");
+        RenderSetup setup = path_kernel(PathKernelForm::Wavefront);
+        setup.tuning.wavefront_sync_counts = i == 0;
         const FlatBvh bvh = build_bvh(scene);
-        Renderer renderer(*context, scene, bvh, camera, s);
+        Renderer renderer(*context, scene, bvh, camera, s, setup);
         renderer.render_sample();
         lengths[i].assign(renderer.last_queue_lengths().begin(), renderer.last_queue_lengths().end());
     }
@@ -196,16 +206,16 @@ TEST_F(DeterminismTest, MegakernelSamplesGroupedOverPixelBatchesGiveTheSameBits)
     // The CPU form with an image larger than one launch: each launch's work-items run their
     // pixels' 4 samples back to back, batch after batch. Left to the planner too (its passes
     // grow from 1 by at most doubling), the grouping must not change a bit.
-    const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", "megakernel");
+    const RenderSetup megakernel = path_kernel(PathKernelForm::Megakernel);
     const Scene scene = load_cornell("CornellBox-Sphere.obj");
     const Camera camera = validation::cornell_camera();
     RenderSettings s = small_path_render(10, 3);
     s.wavefront_size = 500;  // launches of 500, 500 and 200 pixels
     s.samples_per_pass = 4;
-    const std::vector<std::uint32_t> fixed = expect_grouping_keeps_bits(*context, scene, camera, s);
+    const std::vector<std::uint32_t> fixed = expect_grouping_keeps_bits(*context, scene, camera, s, megakernel);
     EXPECT_EQ(fixed, (std::vector<std::uint32_t>{4, 4, 2}));
     s.samples_per_pass = 0;
-    const std::vector<std::uint32_t> planned = expect_grouping_keeps_bits(*context, scene, camera, s);
+    const std::vector<std::uint32_t> planned = expect_grouping_keeps_bits(*context, scene, camera, s, megakernel);
     ASSERT_FALSE(planned.empty());
     EXPECT_EQ(planned.front(), 1u);
     for (std::size_t i = 1; i < planned.size(); ++i) EXPECT_LE(planned[i], 2 * planned[i - 1]);
@@ -221,11 +231,10 @@ TEST_F(DeterminismTest, MegakernelEqualsWavefront)
     RenderSettings s = small_path_render(5, 9);
     s.rr_depth = 2;
     s.wavefront_size = 1000;  // several pixel batches per sample
-    ::setenv("GEOCOLD_PATH_KERNEL", "wavefront", 1);
-    const validation::Rendered wavefront = validation::render(*context, scene, camera, s);
-    ::setenv("GEOCOLD_PATH_KERNEL", "megakernel", 1);
-    const validation::Rendered megakernel = validation::render(*context, scene, camera, s);
-    ::unsetenv("GEOCOLD_PATH_KERNEL");
+    const validation::Rendered wavefront =
+        validation::render(*context, scene, camera, s, path_kernel(PathKernelForm::Wavefront));
+    const validation::Rendered megakernel =
+        validation::render(*context, scene, camera, s, path_kernel(PathKernelForm::Megakernel));
     const bool mean_same = bit_identical(wavefront.mean, megakernel.mean);
     const bool variance_same = bit_identical(wavefront.variance, megakernel.variance);
     std::printf("wavefront %.3f s, megakernel %.3f s; mean films %s, variance films %s\n", wavefront.seconds,
@@ -246,10 +255,9 @@ std::uint32_t expect_megakernel_equals_wavefront(const cl::Context& context, con
     Film variance[2];
     std::vector<std::uint32_t> megakernel_passes;
     std::uint32_t pixels_per_item = 0;
-    const char* forms[2] = {"wavefront", "megakernel"};
+    const PathKernelForm forms[2] = {PathKernelForm::Wavefront, PathKernelForm::Megakernel};
     for (int i = 0; i < 2; ++i) {
-        const cl::test::ScopedEnv path_kernel("GEOCOLD_PATH_KERNEL", forms[i]);
-        Renderer renderer(context, scene, bvh, camera, s);
+        Renderer renderer(context, scene, bvh, camera, s, path_kernel(forms[i]));
         const std::vector<std::uint32_t> passes = render_in_passes(renderer, s.spp);
         if (renderer.uses_megakernel()) {
             megakernel_passes = passes;

@@ -28,12 +28,12 @@ struct Output {
 };
 
 Output render_with(const cl::Context& context, const Scene& scene, const Camera& camera, const RenderSettings& s,
-                   const char* features)
+                   KernelFeatureSet features)
 {
-    ::setenv("GEOCOLD_KERNEL_FEATURES", features, 1);
+    RenderSetup setup;
+    setup.tuning.kernel_features = features;
     const FlatBvh bvh = build_bvh(scene);
-    Renderer renderer(context, scene, bvh, camera, s);
-    ::unsetenv("GEOCOLD_KERNEL_FEATURES");
+    Renderer renderer(context, scene, bvh, camera, s, setup);
     for (std::uint32_t k = 0; k < s.spp; ++k) renderer.render_sample();
     return {renderer.film(), renderer.program().options()};
 }
@@ -62,8 +62,8 @@ class KernelFeaturesTest : public cl::test::DeviceTest {
 protected:
     void expect_same_bits(const char* name, const Scene& scene, const Camera& camera, const RenderSettings& s)
     {
-        const Output full = render_with(*context, scene, camera, s, "all");
-        const Output specialised = render_with(*context, scene, camera, s, "scene");
+        const Output full = render_with(*context, scene, camera, s, KernelFeatureSet::All);
+        const Output specialised = render_with(*context, scene, camera, s, KernelFeatureSet::Scene);
         std::size_t differing = 0;
         double sum = 0.0;
         for (std::size_t i = 0; i < full.mean.data().size(); ++i) {

@@ -34,10 +34,10 @@ struct Rendered {
 };
 
 inline Rendered render(const cl::Context& context, const Scene& scene, const Camera& camera,
-                       const RenderSettings& settings)
+                       const RenderSettings& settings, const RenderSetup& setup = {})
 {
     const FlatBvh bvh = build_bvh(scene);
-    Renderer renderer(context, scene, bvh, camera, settings);
+    Renderer renderer(context, scene, bvh, camera, settings, setup);
     const auto start = std::chrono::steady_clock::now();
     for (std::uint32_t k = 0; k < settings.spp; ++k) renderer.render_sample();
     Rendered out;

@@ -4,6 +4,7 @@
 #include <exception>
 #include <string>
 
+#include "tools/bench/bench_environment.h"
 #include "tools/bench/bench_output.h"
 #include "tools/bench/packet_probe.h"
 
@@ -14,7 +15,7 @@ void measure_packet_probe(const Options& o, std::vector<DeviceSlot>& devices, nl
     const std::size_t vertices = o.quick ? std::size_t{1} << 14 : std::size_t{1} << 22;
     say("\n== explicit SIMD probe (kernels/packet_probe.cl: %zu Lambert vertices, NEE + cosine sample) ==\n", vertices);
     for (DeviceSlot& d : devices) {
-        const PacketProbeFigures f = run_packet_probe(*d.context, vertices, o.repeats);
+        const PacketProbeFigures f = run_packet_probe(*d.context, vertices, o.repeats, bench_render_setup().build);
         say("  %s: 1 vertex per work-item %.1f Mvertices/s; 8 in float8 lanes %.1f = %.2fx; 16 in float16 lanes "
             "%.1f = %.2fx (medians of per-round ratios); %zu of %zu outputs differ from the scalar form's bits\n",
             d.label().c_str(), f.x1_mvertices, f.x8_mvertices, f.x8_ratio, f.x16_mvertices, f.x16_ratio, f.differing,
@@ -30,7 +31,7 @@ void report_issue_model(DeviceSlot& d, nlohmann::json& j)
     // A probe that fails to build costs this figure only, not the run's other figures
     // (bench_issue_roofline_test is where a broken probe fails).
     try {
-        d.issue = issue_model(*d.context);
+        d.issue = issue_model(*d.context, bench_render_setup().build);
     } catch (const std::exception& e) {
         d.issue = {};
         d.issue.why_not = std::string("kernels/roofline_probe.cl: ") + e.what();

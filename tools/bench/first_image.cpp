@@ -12,6 +12,7 @@
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/render/renderer.h"
+#include "tools/bench/bench_environment.h"
 #include "tools/bench/bench_scenes.h"
 #include "tools/bench/timing.h"
 
@@ -70,7 +71,7 @@ int first_image_child(const std::string& key, const std::string& scene_name)
     settings.max_depth = 8;
     settings.rr_depth = 9;
     const auto renderer_start = Clock::now();
-    Renderer renderer(context, s->scene, bvh, s->camera, settings);
+    Renderer renderer(context, s->scene, bvh, s->camera, settings, bench_render_setup());
     // The renderer's constructor uploads the scene and builds the program; the rest of its
     // time, past the program's, is the device layout (BVH4/8 collapse) and the buffers.
     const double upload_seconds = std::max(0.0, seconds_since(renderer_start) - renderer.program().build_seconds());

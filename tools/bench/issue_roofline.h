@@ -17,6 +17,7 @@
 #include <string>
 
 #include "host/cl/context.h"
+#include "host/cl/program.h"
 #include "tools/bench/rays.h"
 
 namespace gc::bench {
@@ -44,6 +45,6 @@ struct IssueModel {
 // Builds kernels/roofline_probe.cl on the context's device and counts its PTX. Available on
 // NVIDIA GPUs of compute capability 7.0 or later (four schedulers per SM, each issuing one
 // warp instruction per clock); elsewhere why_not says why not. Throws only on build errors.
-IssueModel issue_model(const cl::Context& context);
+IssueModel issue_model(const cl::Context& context, const cl::BuildConfig& build = {});
 
 }  // namespace gc::bench

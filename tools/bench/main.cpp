@@ -17,11 +17,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/app/environment.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
+#include "host/image/image_module.h"
 #include "host/util/error.h"
 #include "host/util/host_threads.h"
 #include "tools/bench/bench_devices.h"
+#include "tools/bench/bench_environment.h"
 #include "tools/bench/bench_options.h"
 #include "tools/bench/bench_output.h"
 #include "tools/bench/bench_scenes.h"
@@ -59,6 +62,8 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
 int run(int argc, char** argv)
 {
     const Options o = parse_options(argc, argv);
+    set_image_module_path(image_module_from_environment());
+    bench_render_setup();  // a bad variable is reported before any measuring starts
     if (o.threads > 0) {
         // Before any OpenCL call (PoCL reads its thread count when it is loaded; the
         // first-image children inherit the variables) and before Embree's device exists.

@@ -5,6 +5,7 @@
 
 #include "host/render/pass_planner.h"
 #include "host/render/render_settings.h"
+#include "tools/bench/bench_environment.h"
 #include "tools/bench/bench_output.h"
 #include "tools/bench/ocl_bench.h"
 #include "tools/bench/timing.h"
@@ -65,7 +66,8 @@ void measure_paths(const BenchScene& s, const Options& o, std::vector<DeviceSlot
         // The renderer sizes its path slots for spp: small images then trace several
         // samples per pass on a wide device, as geocold-cl does.
         settings.spp = static_cast<std::uint32_t>(samples);
-        const PathFigures pf = path_samples(*d.context, s.scene, bvh, s.camera, settings, samples, budget);
+        const PathFigures pf = path_samples(*d.context, s.scene, bvh, s.camera, settings, samples, budget,
+                                              bench_render_setup());
         const double sps = pf.pixels / median(pf.sample_seconds);
         json& j = out["path"][d.label()];
         j = {{"width", settings.width}, {"height", settings.height}, {"samples_per_s", sps},

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/util/host_threads.h"
+#include "tools/bench/bench_environment.h"
 #include "tools/bench/bench_output.h"
 #include "tools/bench/ocl_bench.h"
 #include "tools/bench/rays.h"
@@ -180,7 +181,7 @@ void measure_rays(const BenchScene& s, const Options& o, std::vector<DeviceSlot>
     bool have_cost = false;
     TraversalCost cost[3];
     for (DeviceSlot& d : devices) {
-        OclTracer tracer(*d.context, bvh);
+        OclTracer tracer(*d.context, bvh, bench_render_setup());
         const std::size_t launch_rays = d.info.is_gpu ? kGpuRaysPerLaunch : 0;
         tracer.set_min_launch_rays(launch_rays);
         const int repeats = d.info.is_gpu ? 4 * o.repeats : o.repeats;

@@ -12,10 +12,10 @@
 
 namespace gc::bench {
 
-OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh)
+OclTracer::OclTracer(const cl::Context& context, const FlatBvh& bvh, const RenderSetup& setup)
     : m_context(context),
-      m_bvh(DeviceBvh::upload(context, bvh, bvh_layout_for(context.device()))),
-      m_program(context, "trace.cl", program_options(m_bvh.layout())),
+      m_bvh(DeviceBvh::upload(context, bvh, bvh_layout_for(context.device(), setup.tuning.bvh_layout))),
+      m_program(context, "trace.cl", program_options(m_bvh.layout()), setup.build),
       m_closest(m_program.kernel("trace_closest")),
       m_any(m_program.kernel("trace_any"))
 {
@@ -132,10 +132,11 @@ std::vector<double> OclTracer::occluded(const std::vector<dev::GcRay>& rays, int
 }
 
 PathFigures path_samples(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
-                         const RenderSettings& settings, int max_samples, double budget_seconds)
+                         const RenderSettings& settings, int max_samples, double budget_seconds,
+                         const RenderSetup& setup)
 {
     PathFigures figures;
-    Renderer renderer(context, scene, bvh, camera, settings);
+    Renderer renderer(context, scene, bvh, camera, settings, setup);
     figures.pixels = double(settings.width) * double(settings.height);
     figures.scene_bytes = double(renderer.device_scene().bytes());
     figures.wavefront = renderer.wavefront_size();

@@ -15,6 +15,7 @@
 #include "host/cl/program.h"
 #include "host/render/device_bvh.h"
 #include "host/render/render_settings.h"
+#include "host/render/render_setup.h"
 #include "host/scene/scene.h"
 
 namespace gc::bench {
@@ -24,7 +25,7 @@ namespace gc::bench {
 // the ray set.
 class OclTracer {
 public:
-    OclTracer(const cl::Context& context, const FlatBvh& bvh);
+    OclTracer(const cl::Context& context, const FlatBvh& bvh, const RenderSetup& setup = {});
 
     double compile_seconds() const { return m_program.build_seconds(); }
     const char* layout() const { return layout_name(m_bvh.layout()); }
@@ -87,7 +88,8 @@ struct PathFigures {
 // their steady size (a CPU's PassPlanner grows them over the first few), then up to
 // max_samples timed samples, stopping early once budget_seconds have passed.
 PathFigures path_samples(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
-                         const RenderSettings& settings, int max_samples, double budget_seconds);
+                         const RenderSettings& settings, int max_samples, double budget_seconds,
+                         const RenderSetup& setup = {});
 
 // Device-to-device copy bandwidth in bytes per second (read + write counted), over a buffer
 // of `bytes` (capped at a quarter of the largest allocation).

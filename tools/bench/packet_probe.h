@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/cl/context.h"
+#include "host/cl/program.h"
 
 namespace gc::bench {
 
@@ -21,6 +22,7 @@ struct PacketProbeFigures {
 };
 
 // `vertices` is rounded up to a multiple of 16; `rounds` >= 1.
-PacketProbeFigures run_packet_probe(const cl::Context& context, std::size_t vertices, int rounds);
+PacketProbeFigures run_packet_probe(const cl::Context& context, std::size_t vertices, int rounds,
+                                    const cl::BuildConfig& build = {});
 
 }  // namespace gc::bench
