@@ -35,7 +35,7 @@ std::span<const LayoutEntry> host_layout()
 std::vector<LayoutMismatch> probe_layout(const Context& context, const BuildConfig& config)
 {
     const std::span<const LayoutEntry> host = host_layout();
-    Program program(context, "layout_probe.cl", {}, config);
+    Program program(context, "test/layout_probe.cl", {}, config);
     Kernel kernel = program.kernel("gc_layout_probe");
     // Room for one more entry than the host knows, so a longer device list shows up as a count.
     const auto capacity = static_cast<cl_uint>(host.size() + 2);

@@ -1,5 +1,5 @@
 // The device half of the layout contract of kernels/shared/gc_types.h: run
-// kernels/layout_probe.cl and compare every sizeof and field offset it reports with the
+// kernels/test/layout_probe.cl and compare every sizeof and field offset it reports with the
 // host's (the same gc_layout_list.h expanded with offsetof/sizeof).
 #pragma once
 

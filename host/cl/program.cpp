@@ -33,17 +33,26 @@ std::string include_option(const fs::path& dir)
     return text.find(' ') == std::string::npos ? "-I " + text : "-I \"" + text + "\"";
 }
 
-// Hash of every kernel source that could be #included, in a stable order. Hashing too much
-// only costs a rebuild; missing an input would reuse a stale binary.
-std::uint64_t hash_kernel_sources(const fs::path& kernel_dir)
+// The folder of the test and bench probes (kernels/test): a product program never includes
+// them, so their edits must not change the product programs' hash (and every user's cache).
+constexpr const char* kProbeFolder = "test";
+
+bool is_probe(const fs::path& relative)
+{
+    return relative.begin() != relative.end() && *relative.begin() == kProbeFolder;
+}
+
+// Hash of every kernel source that could be #included, in a stable order: the product sources,
+// and the probes' too when a probe is being built. Hashing too much only costs a rebuild;
+// missing an input would reuse a stale binary.
+std::uint64_t hash_kernel_sources(const fs::path& kernel_dir, bool with_probes)
 {
     std::vector<std::pair<std::string, fs::path>> sources;
     for (const auto& entry : fs::recursive_directory_iterator(kernel_dir)) {
         const std::string ext = entry.path().extension().string();
-        if (entry.is_regular_file() && (ext == ".cl" || ext == ".h")) {
-            sources.emplace_back(fs::relative(entry.path(), kernel_dir).generic_string(),
-                                 entry.path());
-        }
+        const fs::path relative = fs::relative(entry.path(), kernel_dir);
+        if (entry.is_regular_file() && (ext == ".cl" || ext == ".h") && (with_probes || !is_probe(relative)))
+            sources.emplace_back(relative.generic_string(), entry.path());
     }
     std::sort(sources.begin(), sources.end());
     Fnv1a hash;
@@ -190,7 +199,7 @@ Program::Program(const Context& context, const std::string& file, const std::str
     // Drivers keep their own binary caches (NVIDIA's ComputeCache, PoCL's kcache), and some key
     // them on the main source text only, missing edits to #included headers. A define that
     // changes with any kernel file forces them to recompile when we do.
-    m_options += " -D GC_SOURCE_HASH=0x" + to_hex(hash_kernel_sources(kernel_dir));
+    m_options += " -D GC_SOURCE_HASH=0x" + to_hex(hash_kernel_sources(kernel_dir, is_probe(fs::path(file))));
     if (!options.empty()) m_options += " " + options;
 
     std::optional<BinaryCache> cache;

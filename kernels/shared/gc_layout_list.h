@@ -3,7 +3,7 @@
  *
  * Deliberately no include guard: the includer defines GC_LAYOUT_SIZE(Struct) and
  * GC_LAYOUT_FIELD(Struct, field), includes this file, and gets one expansion per entry in
- * this order. kernels/layout_probe.cl expands it into device offsets (pointer differences),
+ * this order. kernels/test/layout_probe.cl expands it into device offsets (pointer differences),
  * host/cl/layout_probe.cpp into offsetof/sizeof; tests compare the two on every device.
  * OpenCL C and C++ only (GLSL has no pointers to measure with).
  *

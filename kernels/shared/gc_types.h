@@ -3,7 +3,7 @@
  *
  * Compiled as OpenCL C, C++ (namespace gc::dev, with static_asserts at the end) and GLSL
  * (std430). Rules (see gc_platform.h): sizes are multiples of 16, float4/uint4 fields sit at
- * 16-byte offsets, everything else is a 4-byte scalar. kernels/layout_probe.cl re-measures
+ * 16-byte offsets, everything else is a 4-byte scalar. kernels/test/layout_probe.cl re-measures
  * every field listed in gc_layout_list.h on each device; tests compare with the host.
  *
  * Integer payloads stored in the .w of a float4 are bit patterns (gc_as_uint), read through
@@ -305,7 +305,7 @@ GC_NAMESPACE_END
 #if defined(GC_HOST)
 #include <cstddef>
 #include <type_traits>
-/* The host half of the layout contract. The device half is kernels/layout_probe.cl. */
+/* The host half of the layout contract. The device half is kernels/test/layout_probe.cl. */
 namespace gc::dev::layout_check {
 #define GC_CHECK_POD(T)                                                                         \
     static_assert(std::is_trivially_copyable_v<T> && std::is_standard_layout_v<T>, #T " must be POD"); \

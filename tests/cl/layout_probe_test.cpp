@@ -35,8 +35,8 @@ TEST_F(LayoutProbeTest, LayoutProbeColdVsWarmBuild)
         Context ctx(device);
         // Our cache on every driver, PoCL included (where it is read-only by default).
         const BuildConfig config{{}, cache.path(), true, true};
-        const Program cold(ctx, "layout_probe.cl", "", config);
-        const Program warm(ctx, "layout_probe.cl", "", config);
+        const Program cold(ctx, "test/layout_probe.cl", "", config);
+        const Program warm(ctx, "test/layout_probe.cl", "", config);
         std::printf("%s: layout_probe.cl cold %.3f s, warm %.3f s\n", device.device_name.c_str(),
                     cold.build_seconds(), warm.build_seconds());
         EXPECT_FALSE(cold.from_cache());

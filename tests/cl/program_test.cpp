@@ -221,5 +221,30 @@ TEST_F(ProgramTest, KernelDirFromConfig)
     EXPECT_NE(program.options().find("-I " + (dir.path() / "shared").string()), std::string::npos);
 }
 
+// The probes in kernels/test (tests and bench only) stay out of the product programs' source
+// hash, so editing one leaves every user's cache valid; a probe's own hash covers them.
+TEST_F(ProgramTest, ProbesStayOutOfTheProductHash)
+{
+    auto source_hash = [](const Program& p) {
+        const std::string& o = p.options();
+        const auto at = o.find("GC_SOURCE_HASH=");
+        return at == std::string::npos ? std::string() : o.substr(at, o.find(' ', at) - at);
+    };
+    fs::create_directories(dir.path() / "test");
+    dir.write("test/probe.cl", test::compute_cl);
+    const std::string product_before = source_hash(Program(*context, "compute.cl", "", config));
+    const std::string probe_before = source_hash(Program(*context, "test/probe.cl", "", config));
+    dir.write("test/probe.cl", std::string(test::compute_cl) + "\n/* edited */\n");
+    const std::string product_after = source_hash(Program(*context, "compute.cl", "", config));
+    const std::string probe_after = source_hash(Program(*context, "test/probe.cl", "", config));
+    std::printf("product %s -> %s; probe %s -> %s\n", product_before.c_str(), product_after.c_str(),
+                probe_before.c_str(), probe_after.c_str());
+    ASSERT_FALSE(product_before.empty());
+    EXPECT_EQ(product_before, product_after);
+    EXPECT_NE(probe_before, probe_after);
+    dir.write("shared/gc_extra.h", "/* a new shared header */\n");
+    EXPECT_NE(source_hash(Program(*context, "compute.cl", "", config)), product_after);
+}
+
 }  // namespace
 }  // namespace gc::cl

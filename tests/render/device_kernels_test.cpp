@@ -258,7 +258,7 @@ TEST(DeviceRng, StreamEqualsHost)
     const auto count = static_cast<std::uint32_t>(keys.size());
     for (const cl::DeviceInfo& device : devices) {
         const cl::Context context(device);
-        const cl::Program program(context, "rng_probe.cl");
+        const cl::Program program(context, "test/rng_probe.cl");
         auto key_buf = cl::Buffer<glm::uvec4>::create(context, count, CL_MEM_READ_ONLY, "rng keys");
         auto value_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "rng values");
         key_buf.write(keys);
@@ -297,7 +297,7 @@ TEST(DeviceSampling, TrigAndHemisphereEqualHost)
     const auto count = static_cast<std::uint32_t>(inputs.size());
     for (const cl::DeviceInfo& device : devices) {
         const cl::Context context(device);
-        const cl::Program program(context, "sampling_probe.cl");
+        const cl::Program program(context, "test/sampling_probe.cl");
         auto input_buf = cl::Buffer<glm::vec2>::create(context, count, CL_MEM_READ_ONLY, "sampling inputs");
         auto turns_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "trig values");
         auto hemisphere_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "hemisphere samples");
@@ -324,7 +324,7 @@ TEST(DeviceSampling, TrigAndHemisphereEqualHost)
     }
 }
 
-// kernels/packet_probe.cl: the same vertex with 8 and 16 vertices per work-item in vector
+// kernels/test/packet_probe.cl: the same vertex with 8 and 16 vertices per work-item in vector
 // lanes gives the bits of one vertex per work-item, on every device, including vertices on the
 // light's plane (division by zero) and normals along -z (the frame's special case). This is
 // the premise of explicit SIMD across paths on CPUs: the image would not change.
@@ -344,7 +344,7 @@ TEST(DevicePacketProbe, VectorLanesGiveTheScalarBits)
     }
     for (const cl::DeviceInfo& device : devices) {
         const cl::Context context(device);
-        const cl::Program program(context, "packet_probe.cl");
+        const cl::Program program(context, "test/packet_probe.cl");
         std::vector<cl::Buffer<float>> in;
         for (const std::vector<float>& v : inputs) in.push_back(cl::read_only_buffer(context, v, "probe input"));
         std::vector<std::vector<float>> results;  // per form, the six outputs one after the other
@@ -388,7 +388,7 @@ TEST(DeviceQueue, WorkGroupReservationPushesEachItemOnce)
     if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
     for (const cl::DeviceInfo& device : devices) {
         const cl::Context context(device);
-        const cl::Program program(context, "queue_probe.cl");
+        const cl::Program program(context, "test/queue_probe.cl");
         cl::Kernel kernel = program.kernel("queue_probe");
         for (const std::uint32_t count : {1u, 2u, 127u, 1000u, 4099u}) {
             for (const std::size_t local : {std::size_t{1}, std::size_t{16}, std::size_t{64}}) {

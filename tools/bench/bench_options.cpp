@@ -45,7 +45,7 @@ constexpr const char* kUsage =
     "  --no-rays             skip the ray figures\n"
     "  --no-path             skip the path-tracing figures\n"
     "  --no-first-image      skip the time to first image\n"
-    "  --no-packet-probe     skip the explicit-SIMD probe (kernels/packet_probe.cl)\n"
+    "  --no-packet-probe     skip the explicit-SIMD probe (kernels/test/packet_probe.cl)\n"
     "Renderer settings (0: the renderer's own choice, as geocold-cl makes it):\n"
     "  --wavefront N         paths in flight per pass\n"
     "  --samples-per-pass N  samples per pixel in one pass (a CPU plans passes of half a second,\n"

@@ -13,7 +13,7 @@ namespace gc::bench {
 void measure_packet_probe(const Options& o, std::vector<DeviceSlot>& devices, nlohmann::json& doc)
 {
     const std::size_t vertices = o.quick ? std::size_t{1} << 14 : std::size_t{1} << 22;
-    say("\n== explicit SIMD probe (kernels/packet_probe.cl: %zu Lambert vertices, NEE + cosine sample) ==\n", vertices);
+    say("\n== explicit SIMD probe (kernels/test/packet_probe.cl: %zu Lambert vertices, NEE + cosine sample) ==\n", vertices);
     for (DeviceSlot& d : devices) {
         const PacketProbeFigures f = run_packet_probe(*d.context, vertices, o.repeats, bench_render_setup().build);
         say("  %s: 1 vertex per work-item %.1f Mvertices/s; 8 in float8 lanes %.1f = %.2fx; 16 in float16 lanes "
@@ -34,7 +34,7 @@ void report_issue_model(DeviceSlot& d, nlohmann::json& j)
         d.issue = issue_model(*d.context, bench_render_setup().build);
     } catch (const std::exception& e) {
         d.issue = {};
-        d.issue.why_not = std::string("kernels/roofline_probe.cl: ") + e.what();
+        d.issue.why_not = std::string("kernels/test/roofline_probe.cl: ") + e.what();
     }
     if (!d.issue.available) {
         say("  %s: no issue-rate roofline: %s\n", d.label().c_str(), d.issue.why_not.c_str());
@@ -42,7 +42,7 @@ void report_issue_model(DeviceSlot& d, nlohmann::json& j)
         return;
     }
     say("  %s: issue rate %.1f T lane instructions/s (%s); PTX instructions per BVH2 unit "
-        "(kernels/roofline_probe.cl): ray set-up %.0f, inner node %.0f, triangle %.0f\n",
+        "(kernels/test/roofline_probe.cl): ray set-up %.0f, inner node %.0f, triangle %.0f\n",
         d.label().c_str(), d.issue.issue_rate / 1e12, d.issue.rate_text.c_str(), d.issue.setup, d.issue.inner,
         d.issue.triangle);
     j["issue"] = {{"available", true},     {"rate", d.issue.issue_rate}, {"rate_text", d.issue.rate_text},

@@ -35,7 +35,7 @@ IssueModel issue_model(const cl::Context& context, const cl::BuildConfig& build)
     m.rate_text = std::to_string(info.compute_units) + " SMs x " + std::to_string(kSchedulersPerSm) + " x " +
                   std::to_string(warp) + " lanes x " + std::to_string(mhz) + " MHz";
 
-    const cl::Program program(context, "roofline_probe.cl", program_options(BvhLayout::Binary), build);
+    const cl::Program program(context, "test/roofline_probe.cl", program_options(BvhLayout::Binary), build);
     const std::vector<unsigned char> binary = program.binary();
     const std::string ptx(binary.begin(), binary.end());
     if (!looks_like_ptx(ptx)) {

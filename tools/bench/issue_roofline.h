@@ -4,7 +4,7 @@
 // against copy bandwidth) it says whether a ray figure is bound by bandwidth, by issue, or
 // by neither (latency).
 //
-// Instructions per unit are static PTX counts: kernels/roofline_probe.cl does each unit once
+// Instructions per unit are static PTX counts: kernels/test/roofline_probe.cl does each unit once
 // and twice, and the difference of the two kernels' counts is the unit. So:
 //   - a triangle test counts all of its instructions, although most tests stop at the
 //     inside test (more than issued);
@@ -42,7 +42,7 @@ struct IssueModel {
     double bound_rays_per_s(const TraversalCost& c) const { return issue_rate / instructions_per_ray(c); }
 };
 
-// Builds kernels/roofline_probe.cl on the context's device and counts its PTX. Available on
+// Builds kernels/test/roofline_probe.cl on the context's device and counts its PTX. Available on
 // NVIDIA GPUs of compute capability 7.0 or later (four schedulers per SM, each issuing one
 // warp instruction per clock); elsewhere why_not says why not. Throws only on build errors.
 IssueModel issue_model(const cl::Context& context, const cl::BuildConfig& build = {});

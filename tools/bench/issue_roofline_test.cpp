@@ -1,5 +1,5 @@
 // The GPU roofline's instruction half (issue_roofline.h) on every OpenCL device present:
-// kernels/roofline_probe.cl must build wherever the BVH2 traversal does (it calls the same
+// kernels/test/roofline_probe.cl must build wherever the BVH2 traversal does (it calls the same
 // functions, so a change to their signatures shows here and not only on a GPU node), and on
 // an NVIDIA GPU each unit must come out as a positive PTX instruction count. Elsewhere the
 // model says why it has no figure.
@@ -26,7 +26,7 @@ TEST(IssueRoofline, ProbeBuildsAndCountsOnEveryDevice)
     for (const cl::DeviceInfo& info : devices) {
         SCOPED_TRACE(info.device_name);
         const cl::Context context(info);
-        const cl::Program probe(context, "roofline_probe.cl", program_options(BvhLayout::Binary));
+        const cl::Program probe(context, "test/roofline_probe.cl", program_options(BvhLayout::Binary));
         for (const char* unit : {"setup", "inner", "triangle"}) {
             for (const char* times : {"_x1", "_x2"}) {
                 const std::string name = std::string("probe_") + unit + times;

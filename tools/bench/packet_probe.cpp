@@ -53,7 +53,7 @@ PacketProbeFigures run_packet_probe(const cl::Context& context, std::size_t vert
     std::vector<cl::Buffer<float>> inputs;
     for (const std::vector<float>& v : host_inputs) inputs.push_back(cl::read_only_buffer(context, v, "probe input"));
 
-    const cl::Program program(context, "packet_probe.cl", "", build);
+    const cl::Program program(context, "test/packet_probe.cl", "", build);
     std::array<Form, 3> forms = {Form{"packet_probe_x1", 1, {}, {}}, Form{"packet_probe_x8", 8, {}, {}},
                                  Form{"packet_probe_x16", 16, {}, {}}};
     std::array<cl::Kernel, 3> kernels;

@@ -1,4 +1,4 @@
-// Explicit SIMD across paths, measured: kernels/packet_probe.cl's Lambert vertex with one
+// Explicit SIMD across paths, measured: kernels/test/packet_probe.cl's Lambert vertex with one
 // vertex per work-item (as the renderer's kernels work) against 8 and 16 per work-item in
 // OpenCL vector lanes, on one device, in interleaved rounds.
 #pragma once

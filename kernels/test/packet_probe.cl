@@ -16,13 +16,13 @@
  * Inputs and outputs are structure-of-arrays, one float per vertex and component.
  */
 #define GC_PROBE_LANES 1
-#include "packet_probe_vertex.h"
+#include "test/packet_probe_vertex.h"
 #undef GC_PROBE_LANES
 
 #define GC_PROBE_LANES 8
-#include "packet_probe_vertex.h"
+#include "test/packet_probe_vertex.h"
 #undef GC_PROBE_LANES
 
 #define GC_PROBE_LANES 16
-#include "packet_probe_vertex.h"
+#include "test/packet_probe_vertex.h"
 #undef GC_PROBE_LANES
