@@ -2,6 +2,8 @@
 // anything gives that thing.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "host/math/affine.h"
@@ -19,6 +21,14 @@ struct Bounds3 {
     Bounds3(const Point3& a, const Point3& b) : lo(min(a, b)), hi(max(a, b)) {}
 
     bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+    // The largest |coordinate| of the box (0 when empty): the magnitude that bounds the
+    // rounding of anything computed from points inside it.
+    float largest_abs_coordinate() const
+    {
+        if (empty()) return 0.0f;
+        return std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x), std::fabs(hi.y),
+                         std::fabs(hi.z)});
+    }
     Vec3 diagonal() const { return hi - lo; }
     Point3 centroid() const { return midpoint(lo, hi); }
 

@@ -46,10 +46,7 @@ double triangle_area(const Point3& a, const Point3& b, const Point3& c)
 // error, from which the kernels size the offset of rays that leave it (gc_spawn.h).
 float corner_magnitude(const Point3& a, const Point3& b, const Point3& c)
 {
-    float m = 0.0f;
-    for (const Point3& p : {a, b, c})
-        m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    return m;
+    return unite(Bounds3(a, b), c).largest_abs_coordinate();
 }
 
 // Per-triangle tangent frame for normal maps: T = dP/du (unit, orthogonal to the face normal)

@@ -31,8 +31,7 @@ void check_renderable_scale(const Scene& scene)
 {
     if (scene.positions.empty()) return;
     const Bounds3 b = scene.bounds();
-    const double largest = std::max({std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
-                                     std::fabs(b.hi.y), std::fabs(b.hi.z)});
+    const double largest = b.largest_abs_coordinate();
     const Vec3 d = b.diagonal();
     const double size = std::max({double(d.x), double(d.y), double(d.z)});
     std::ostringstream what;

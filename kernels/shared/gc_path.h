@@ -8,7 +8,6 @@
 
 #include "gc_accessors.h"
 #include "gc_sampling.h"
-#include "gc_spawn.h"
 
 #ifndef GC_EMITTERS_PARAM
 #define GC_EMITTERS_PARAM GC_GLOBAL const GcEmitter* emitters

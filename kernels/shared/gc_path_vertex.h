@@ -34,6 +34,7 @@
 #include "gc_frame.h"
 #include "gc_lights.h"
 #include "gc_path.h"
+#include "gc_spawn.h"
 #include "gc_rng.h"
 #include "gc_shading.h"
 #include "gc_tangent.h"

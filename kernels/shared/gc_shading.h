@@ -17,7 +17,7 @@ GC_STRUCT(GcSurface) {
     float3 ng; /* unit geometric normal, as wound (not flipped toward the ray) */
     float3 ns; /* unit shading normal, as interpolated (not flipped to ng's side) */
     float2 uv;
-    float spawn_scale; /* gc_offset_ray_origin's scale for rays leaving p (gc_path.h) */
+    float spawn_scale; /* gc_offset_ray_origin's scale for rays leaving p (gc_spawn.h) */
     uint material;
     uint prim;
 } GC_STRUCT_END(GcSurface)

@@ -16,24 +16,14 @@ GC_NAMESPACE_BEGIN
  * ray leaves from) far enough that the new ray cannot hit the surface again.
  *
  * How far depends on how wrong p can be, and that is set by the magnitudes that entered it,
- * not by p's own coordinates. With M the largest |coordinate| among the ray origin o and the
- * triangle's vertices (gc_spawn_scale) and eps = 2^-24: the product t d and the sum o + t d
- * round by up to eps M each per coordinate (the sum cancels when the camera is far from the
- * surface), and the watertight test's t is off by about 5 eps times the vertices' distance
- * from o (Woop et al. 2013) on a well-shaped triangle, at most 10 eps M. On a needle-thin
- * triangle the edge functions' rounding is large against its small determinant, and t's error
- * grows with the aspect ratio. p moves 256 eps M (2^-16 M) along the normal: 64 eps M held
- * on well-shaped triangles but not on the stress corpus's 1000:1 slivers, whose new rays then
- * re-hit their own triangle on one device and not another (tests/stress). Rejecting hits
- * closer than t's own error bound (pbrt-v4's deltaT) would allow a smaller offset; the
- * traversal does not compute that bound today.
- *
- * Wächter & Binder's offset (Ray Tracing Gems, ch. 6) moves each coordinate by ulps of
- * itself instead, with a fixed absolute step near zero. A coordinate near zero then moves
- * less than its own error wherever the scene sits far from the origin (a floor at y = 0 in a
- * box scaled by 500 and moved 800 units re-hit itself on some devices and not on others),
- * and far too much in a scene a thousand times smaller than a unit. + and * only, contraction
- * off: the same bits on every device. */
+ * not by p's own coordinates (as Wächter & Binder's offset, Ray Tracing Gems ch. 6, assumes):
+ * o + t d rounds by about an ulp of the ray origin o (the sum cancels when the camera is far
+ * from the surface), and the watertight test's t carries error in proportion to the
+ * vertices' distance from o (Woop et al. 2013), more so on needle-thin triangles. So the
+ * step is a fixed fraction of M, the largest |coordinate| among o and the triangle's
+ * vertices (gc_spawn_scale): 2^-16 M, which also covers 1000:1 slivers
+ * (docs/decisions/spawn-offset.md). + and * only, contraction off: the same bits on every
+ * device. */
 #define GC_SPAWN_OFFSET 1.52587890625e-05f /* 2^-16 */
 
 /* The largest |coordinate| of the ray origin o and of the hit triangle (tri_extent, kept

@@ -9,8 +9,8 @@
  * a correctly rounded division and sqrt (the program builder asks for
  * -cl-fp32-correctly-rounded-divide-sqrt) in a fixed order, with contraction off
  * (gc_platform.h; the Vulkan reference marks every float operation NoContraction), they give
- * the same bits on every device and on the host. tests/kernels/builtin_rule_test.cpp keeps
- * the built-ins out of the kernels.
+ * the same bits on every device and on the host. tests/kernels keeps the built-ins out of the
+ * kernels (forbidden_builtins.h).
  *
  * Shared dialect (gc_platform.h): OpenCL C 1.2, C++20 (gc::dev) and GLSL 4.50.
  */
