@@ -19,9 +19,7 @@
 #include "host/cl/device.h"
 #include "host/image/compare.h"
 #include "host/image/image_io.h"
-#include "host/render/renderer.h"
-#include "host/scene/camera_framing.h"
-#include "host/scene/load.h"
+#include "host/render/session.h"
 #include "host/util/log.h"
 
 #ifdef GC_HAVE_VULKAN
@@ -117,17 +115,9 @@ ExitCode run_consistency(const Options& options)
     settings.time_limit_seconds = 0.0;
     if (settings.integrator == IntegratorKind::Aov && !options.spp_given) settings.spp = 1;
 
-    LoadOptions load_options;
-    load_options.gltf_scene = options.gltf_scene;
-    const Scene scene = load_scene(options.scene_path, load_options);
+    const PreparedScene prepared = prepare_scene(scene_request(options));
+    const Scene& scene = prepared.scene;
     if (const auto warning = unlit_scene_warning(scene, settings)) log_warning(*warning);
-    CameraOverrides overrides;
-    overrides.look_from = options.look_from;
-    overrides.look_at = options.look_at;
-    overrides.up = options.up;
-    overrides.fov = options.fov_degrees;
-    const Camera camera = resolve_camera(scene, overrides);
-    const FlatBvh bvh = build_bvh(scene);
 
     ConsistencyRun run;
     run.scene = options.scene_path;
@@ -155,8 +145,8 @@ ExitCode run_consistency(const Options& options)
             run.notes.push_back(device.device_name +
                                 ": no correctly rounded division/sqrt (CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT): "
                                 "expect more differing pixels");
-        const cl::Context context(device);
-        Renderer renderer(context, scene, bvh, camera, settings, setup);
+        Session session(device, prepared, settings, setup);
+        Renderer& renderer = session.renderer();
         ConsistencyRender r;
         r.api = "opencl";
         r.device = device.device_name;
@@ -164,7 +154,7 @@ ExitCode run_consistency(const Options& options)
         r.image = render_all(renderer, settings.spp, r.seconds);
         run.renders.push_back(std::move(r));
     }
-    add_vulkan_render(options, scene, bvh, camera, settings, run);
+    add_vulkan_render(options, scene, prepared.bvh, prepared.camera, settings, run);
 
     run.pairs = compare_all(run.renders, run.tolerances);
     std::fputs(format_report(run).c_str(), stdout);

@@ -288,4 +288,16 @@ Exit status:
     return s.str();
 }
 
+SceneRequest scene_request(const Options& options)
+{
+    SceneRequest request;
+    request.path = options.scene_path;
+    request.load.gltf_scene = options.gltf_scene;
+    request.camera.look_from = options.look_from;
+    request.camera.look_at = options.look_at;
+    request.camera.up = options.up;
+    request.camera.fov = options.fov_degrees;
+    return request;
+}
+
 }  // namespace gc

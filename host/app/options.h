@@ -8,6 +8,7 @@
 
 #include "host/math/affine.h"
 #include "host/render/render_settings.h"
+#include "host/render/session.h"
 
 namespace gc {
 
@@ -42,6 +43,9 @@ struct Options {
 
 // Throws UsageError with a message that names the offending option and value.
 Options parse_options(const std::vector<std::string>& args);
+
+// The scene file, its glTF scene and the camera overrides the options name.
+SceneRequest scene_request(const Options& options);
 
 std::string usage_text();
 std::string version_text();

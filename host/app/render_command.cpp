@@ -1,32 +1,19 @@
 #include "host/app/render_command.h"
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 #include "host/app/environment.h"
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
-#include "host/bvh/bvh.h"
-#include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
-#include "host/render/pass_planner.h"
-#include "host/render/renderer.h"
-#include "host/scene/camera_framing.h"
-#include "host/scene/load.h"
+#include "host/render/session.h"
 #include "host/util/log.h"
 #include "host/util/progress.h"
 
 namespace gc {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string fixed(double value, int decimals)
 {
@@ -68,37 +55,17 @@ ExitCode run_render(const Options& options)
     // Depth, normals and primitive ids are per-pixel facts: more samples add nothing.
     if (settings.integrator == IntegratorKind::Aov && !options.spp_given) settings.spp = 1;
 
-    auto t0 = Clock::now();
-    LoadOptions load_options;
-    load_options.gltf_scene = options.gltf_scene;
-    Scene scene = load_scene(options.scene_path, load_options);
-    log_verbose("loaded " + options.scene_path + ": " + std::to_string(scene.triangle_count()) + " triangles, " +
-                std::to_string(scene.materials.size()) + " materials in " + fixed(seconds_since(t0), 3) + " s");
-    if (const auto warning = unlit_scene_warning(scene, settings)) log_warning(*warning);
-
-    CameraOverrides overrides;
-    overrides.look_from = options.look_from;
-    overrides.look_at = options.look_at;
-    overrides.up = options.up;
-    overrides.fov = options.fov_degrees;
-    const Camera camera = resolve_camera(scene, overrides);
-
-    t0 = Clock::now();
-    FlatBvh bvh = build_bvh(scene);
-    const BvhStats stats = bvh_stats(bvh);
-    log_verbose("BVH: " + std::to_string(stats.nodes) + " nodes, SAH cost " + fixed(stats.sah_cost, 2) + ", built in " +
-                fixed(seconds_since(t0), 3) + " s");
+    PreparedScene prepared = prepare_scene(scene_request(options));
+    if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
 
     check_output_format(output);
     const cl::DeviceInfo device = cl::select_device(options.device);
-    const cl::Context context(device);
-    t0 = Clock::now();
-    Renderer renderer(context, scene, bvh, camera, settings, render_setup_from_environment());
+    Session session(device, prepared, settings, render_setup_from_environment());
     // The device holds its own copy of the scene and the BVH (a CPU device the wide BVH made
-    // from it), and the Renderer reads neither after its construction: for the rest of the
-    // render they are dead weight, 85 bytes per triangle for the flat BVH alone.
-    bvh = FlatBvh{};
-    scene = Scene{};
+    // from it): for the rest of the render they are dead weight, 85 bytes per triangle for
+    // the flat BVH alone.
+    prepared = PreparedScene{};
+    const Renderer& renderer = session.renderer();
     log_verbose("device " + device.device_name + " (" + device.platform_name + "); kernels " +
                 (renderer.program().from_cache() ? "loaded from cache" : "compiled") + " in " +
                 fixed(renderer.program().build_seconds(), 3) + " s; scene uses " +
@@ -109,25 +76,13 @@ ExitCode run_render(const Options& options)
     progress_options.quiet = options.quiet;
     progress_options.unit = "spp";
     ProgressBar progress("Rendering", settings.spp, progress_options);
-    const auto render_start = Clock::now();
-    bool interrupted = false;
-    while (renderer.samples_done() < settings.spp) {
-        std::uint32_t wanted = settings.spp - renderer.samples_done();
-        // With a time limit, a pass is cut to what fits before it (the CPU's passes grow to
-        // two seconds in long renders): it stops at most about one sample's time late.
-        if (settings.time_limit_seconds > 0)
-            wanted = samples_before_deadline(settings.time_limit_seconds - seconds_since(render_start),
-                                             renderer.seconds_per_sample(), wanted);
-        renderer.render_samples(wanted);
-        progress.update(renderer.samples_done());
-        if (interrupt_requested()) {
-            interrupted = true;
-            break;
-        }
-        if (settings.time_limit_seconds > 0 && seconds_since(render_start) >= settings.time_limit_seconds) break;
-    }
+    RenderControl control;
+    control.time_limit_seconds = settings.time_limit_seconds;
+    control.cancelled = interrupt_requested;
+    control.on_pass = [&](std::uint32_t done) { progress.update(done); };
+    const RenderOutcome outcome = session.render(control);
     progress.finish();
-    const double render_seconds = seconds_since(render_start);
+    const double render_seconds = outcome.seconds;
 
     ImageMetadata meta;
     meta.device = device.device_name + " (" + device.platform_name + ")";
@@ -144,7 +99,7 @@ ExitCode run_render(const Options& options)
     log_info("wrote " + output.string() + " (" + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
              ", " + std::to_string(renderer.samples_done()) + " spp, " + fixed(render_seconds, 2) + " s, " +
              fixed(samples_per_second / 1e6, 2) + " Msamples/s on " + device.device_name + ")");
-    return interrupted ? ExitCode::Interrupted : ExitCode::Ok;
+    return outcome.cancelled ? ExitCode::Interrupted : ExitCode::Ok;
 }
 
 }  // namespace gc

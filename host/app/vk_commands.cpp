@@ -7,12 +7,9 @@
 
 #include "host/app/environment.h"
 #include "host/app/lighting_check.h"
-#include "host/bvh/bvh.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
-#include "host/scene/camera_framing.h"
-#include "host/scene/load.h"
 #include "host/util/log.h"
 #include "host/vk/context.h"
 #include "host/vk/cross_check.h"
@@ -28,23 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-Scene load(const Options& options)
-{
-    LoadOptions load_options;
-    load_options.gltf_scene = options.gltf_scene;
-    return load_scene(options.scene_path, load_options);
-}
-
-Camera camera_for(const Scene& scene, const Options& options)
-{
-    CameraOverrides overrides;
-    overrides.look_from = options.look_from;
-    overrides.look_at = options.look_at;
-    overrides.up = options.up;
-    overrides.fov = options.fov_degrees;
-    return resolve_camera(scene, overrides);
-}
-
 }  // namespace
 
 ExitCode run_preview(const Options& options)
@@ -53,10 +33,9 @@ ExitCode run_preview(const Options& options)
         options.output_path.empty() ? std::filesystem::path(std::filesystem::path(options.scene_path).stem().string() + ".png")
                                     : std::filesystem::path(options.output_path);
     check_output_path(output);
-    const Scene scene = load(options);
-    const Camera camera = camera_for(scene, options);
+    const PreparedScene prepared = load_with_camera(scene_request(options));
     const vk::Context context(options.vk_device);
-    vk::RasterPass pass(context, scene, camera, options.render);
+    vk::RasterPass pass(context, prepared.scene, prepared.camera, options.render);
     const auto t0 = Clock::now();
     const vk::GBuffer g = pass.render();
     const double seconds = seconds_since(t0);
@@ -81,19 +60,18 @@ ExitCode run_cross_check(const Options& options)
     // The Vulkan side is a megakernel on (typically) a CPU rasteriser: keep the defaults cheap.
     if (!options.spp_given) settings.spp = 4;
     if (!options.res_given) settings.width = settings.height = 128;
-    const Scene scene = load(options);
-    const Camera camera = camera_for(scene, options);
+    const PreparedScene prepared = prepare_scene(scene_request(options));
     // Radiance needs light: a scene that nothing lights gets a white environment.
-    if (!has_light(scene, settings)) {
+    if (!has_light(prepared.scene, settings)) {
         settings.env_radiance = glm::vec3(1.0f);
         log_info("nothing lights the scene: the radiance checks use --env 1,1,1");
     }
-    const FlatBvh bvh = build_bvh(scene);
     const cl::DeviceInfo device = cl::select_device(options.device);
     const cl::Context cl_context(device);
     const vk::Context vk_context(options.vk_device);
     log_info("OpenCL: " + device.device_name + " (" + device.platform_name + "); Vulkan: " + vk_context.description());
-    const vk::CrossCheckReport report = vk::cross_check(cl_context, vk_context, scene, bvh, camera, settings,
+    const vk::CrossCheckReport report = vk::cross_check(cl_context, vk_context, prepared.scene, prepared.bvh,
+                                                        prepared.camera, settings,
                                                         render_setup_from_environment());
     std::fputs(report.format().c_str(), stdout);
     const bool ok = report.passed();

@@ -1,8 +1,11 @@
 #include "host/render/device_scene.h"
 
+#include <span>
+#include <string>
 #include <vector>
 
 #include "host/render/scene_convert.h"
+#include "host/util/error.h"
 
 namespace gc {
 std::uint64_t DeviceScene::bytes() const
@@ -38,8 +41,27 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     d.texture_count = static_cast<std::uint32_t>(textures.textures.size());
     d.env_width = environment.width;
     d.env_height = environment.height;
+    d.env_source = environment.source;
+    d.summary = summarize(scene);
+    d.feature_set = tuning.kernel_features;
     d.features = kernel_features(materials, lights.size(), environment.width > 0, tuning.kernel_features);
     return d;
+}
+
+void DeviceScene::update_materials(const cl::Context& context, const Scene& scene)
+{
+    if (scene.triangle_count() != triangle_count || scene.materials.size() != materials.count())
+        throw UsageError("a material update needs the uploaded scene: it has " + std::to_string(triangle_count) +
+                         " triangles and " + std::to_string(materials.count()) + " materials, the update " +
+                         std::to_string(scene.triangle_count()) + " and " + std::to_string(scene.materials.size()));
+    const std::vector<dev::GcMaterial> new_materials = make_materials(scene);
+    materials.write(std::span<const dev::GcMaterial>(new_materials));
+    const std::vector<dev::GcEmitter> new_emitters = make_emitters(scene);
+    emitters = cl::read_only_buffer(context, new_emitters, "emitters");
+    emitter_count = static_cast<std::uint32_t>(new_emitters.size());
+    summary = summarize(scene);
+    features = kernel_features(new_materials, point_light_count, env_width > 0, feature_set);
+    ++revision;
 }
 
 }  // namespace gc

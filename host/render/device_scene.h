@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <tuple>
 
 #include "gc_types.h"
@@ -14,6 +15,7 @@
 #include "host/render/device_tuning.h"
 #include "host/render/environment.h"
 #include "host/render/kernel_features.h"
+#include "host/render/scene_convert.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -39,7 +41,13 @@ struct DeviceScene {
     std::uint32_t texture_count = 0;
     std::uint32_t env_width = 0;  // 0: no environment map
     std::uint32_t env_height = 0;
-    KernelFeatures features;  // what the programs rendering this scene must handle
+    std::string env_source;       // the uploaded map's EnvironmentMap::source
+    SceneSummary summary;         // what the kernels' parameters say about the scene
+    KernelFeatureSet feature_set = KernelFeatureSet::Scene;
+    KernelFeatures features;      // what the programs rendering this scene must handle
+    // Bumped by every update: a renderer that sees it change restarts its film, since samples
+    // of the old scene and the new one do not average into either.
+    std::uint64_t revision = 0;
 
     // Bytes of device memory the scene occupies (reported by --verbose and the benchmark).
     std::uint64_t bytes() const;
@@ -64,6 +72,13 @@ struct DeviceScene {
     {
         return std::tuple_cat(bvh_args(), std::tie(emitters), lights_args());
     }
+
+    // Replaces the materials, and the emitters they make (an emission edit changes which
+    // triangles emit and how strongly), from `scene`: the uploaded scene with its materials
+    // edited, so the same triangles and the same number of materials (UsageError otherwise).
+    // The geometry, the BVH and the textures stay on the device; a renderer rebuilds its
+    // program only if the edit changed the kernel features.
+    void update_materials(const cl::Context& context, const Scene& scene);
 
     static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
                               const EnvironmentMap& environment = {}, const DeviceTuning& tuning = {});

@@ -65,7 +65,9 @@ EnvironmentMap load_environment_map(const std::filesystem::path& path)
     for (float v : image.data())
         if (!std::isfinite(v) || v < 0.0f)
             throw InputError(path.string() + ": environment map has non-finite or negative texels");
-    return make_environment_map(image);
+    EnvironmentMap map = make_environment_map(image);
+    map.source = path.string();
+    return map;
 }
 
 EnvironmentMap load_environment_map(const RenderSettings& settings)

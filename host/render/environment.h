@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,6 +21,7 @@ struct EnvironmentMap {
     std::vector<glm::vec4> pixels;      // linear RGB; row 0 is the zenith (+Y)
     std::vector<float> marginal_cdf;    // height + 1 entries, 0 ... 1
     std::vector<float> conditional_cdf; // height rows of width + 1 entries, each 0 ... 1
+    std::string source;                 // the file it was read from; empty when made in memory
 
     bool empty() const { return width == 0 || height == 0; }
 };

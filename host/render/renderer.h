@@ -1,129 +1,124 @@
-// Renders a scene on one OpenCL device, one sample per pixel at a time. The caller owns the
-// loop (progress, time limit, Ctrl-C) and asks for the film whenever it wants an image.
+// A film and one integrator on a scene already on an OpenCL device. The caller owns the loop
+// (render_loop.h runs one with a deadline and cancellation) and reads the film, as a mean or
+// as per-pixel sums, whenever it wants.
+//
+//     auto scene = std::make_shared<DeviceScene>(DeviceScene::upload(context, host_scene, bvh, env));
+//     Renderer renderer(context, scene, camera, settings);
+//     renderer.render(0, 32);
+//     renderer.render(32, 32);   // the same bits as render(0, 64)
+//     Film image = renderer.film();
+//
+// Several renderers may share one device scene (the cross-check renders it with four
+// integrators). The camera can change between renders, and the scene's materials
+// (DeviceScene::update_materials): either restarts the film, without a new upload of the
+// geometry and, unless the kernel features changed, without a new program.
 #pragma once
 
 #include <cstdint>
-#include <span>
-#include <string>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "gc_types.h"
 #include "host/bvh/bvh.h"
-#include "host/cl/buffer.h"
 #include "host/cl/context.h"
-#include "host/cl/kernel.h"
-#include "host/cl/program.h"
 #include "host/image/film.h"
 #include "host/render/device_scene.h"
-#include "host/render/device_tuning.h"
-#include "host/render/render_setup.h"
+#include "host/render/integrator.h"
 #include "host/render/pass_planner.h"
 #include "host/render/render_settings.h"
-#include "host/render/wavefront_launches.h"
+#include "host/render/render_setup.h"
 #include "host/scene/scene.h"
 
 namespace gc {
 
+// A film's raw content: per pixel, row 0 at the top, the sums over its samples of the
+// radiance (alpha: the number of samples, counted in float) and of its squares, and how many
+// samples it holds.
+struct FilmSums {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<glm::vec4> sums;
+    std::vector<glm::vec4> squares;
+    std::vector<std::uint32_t> sample_counts;
+};
+
 class Renderer {
 public:
-    // `setup` changes the speed and where the kernels come from, never the image.
+    // `scene` must have been uploaded to `context`'s device with the environment map that
+    // settings.env_map_path names (UsageError otherwise). `setup` changes the speed and where
+    // the kernels come from, never the image.
+    Renderer(const cl::Context& context, std::shared_ptr<const DeviceScene> scene, const Camera& camera,
+             const RenderSettings& settings, const RenderSetup& setup = {});
+    // Uploads `scene`, and the environment map settings.env_map_path names, for this renderer
+    // alone: for one-off renders and tests.
     Renderer(const cl::Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
              const RenderSettings& settings, const RenderSetup& setup = {});
+    ~Renderer();
 
-    // Adds one sample to every pixel (several kernel passes if the image is larger than the
-    // wavefront). Enqueues work and waits for it.
+    // Adds samples [first_sample, first_sample + count) to every pixel, in as many passes as
+    // the integrator plans. Ranges rendered one after the other give the same bits as one.
+    void render(std::uint32_t first_sample, std::uint32_t count);
+
+    // Adds between 1 and max_samples samples, from next_sample() on, to every pixel in one pass
+    // (several kernel batches if the image is larger than the wavefront) and returns how many.
+    // The path integrator traces several samples per pixel in one pass where that pays
+    // (Integrator::max_samples_per_pass, PassPlanner). The image after n samples is the same
+    // bits however they were grouped. Enqueues work and waits for it.
+    std::uint32_t render_samples(std::uint32_t max_samples);
     void render_sample() { render_samples(1); }
 
-    // Adds between 1 and max_samples samples to every pixel and returns how many: the path
-    // integrator traces several samples per pixel in one pass, on GPUs when the image is
-    // smaller than the wavefront, on CPUs as many as fill the planner's pass length (PassPlanner).
-    // The image after n samples is the same bits however they were grouped.
-    std::uint32_t render_samples(std::uint32_t max_samples);
+    // Points the camera elsewhere; the film restarts.
+    void set_camera(const Camera& camera);
+    // Empties the film; the next render_samples starts at sample `next_sample`.
+    void clear(std::uint32_t next_sample = 0);
 
+    // Samples each pixel of the film holds, and the index the next render_samples starts at.
+    // After a scene update, 0: the next render restarts the film.
+    std::uint32_t samples_done() const { return m_scene->revision == m_scene_revision ? m_sample_count : 0; }
+    std::uint32_t next_sample() const { return m_next_sample; }
     // Whether the passes have reached their steady size (benchmarks time from there on).
-    bool passes_settled() const { return !m_megakernel || m_planner.settled(); }
+    bool passes_settled() const { return !m_integrator->plans_passes_by_time() || m_planner.settled(); }
     // The last pass's seconds per sample (0 before the first): for a caller with a deadline.
     double seconds_per_sample() const { return m_planner.seconds_per_sample(); }
-
-    std::uint32_t samples_done() const { return m_samples; }
-    std::uint32_t wavefront_size() const { return m_batch; }
-    bool uses_megakernel() const { return m_megakernel; }
-    // Pixels one megakernel work-item rendered in the last pass (gc_packet_lanes.h); 1 elsewhere.
+    // Pixels one work-item rendered in the last pass (gc_packet_lanes.h; 1 but for the BVH8
+    // megakernel's camera packets).
     std::uint32_t pixels_per_item() const { return m_params.pixels_per_item; }
-    // Wavefront path integrator: the queue lengths of the last pass's last batch, for each depth
-    // the rays it queued for the next one and its shadow rays (2 x max_depth values; zeros
-    // before the first pass and past the depth where every path ended).
-    std::span<const std::uint32_t> last_queue_lengths() const { return m_last_queue_lengths; }
-    const cl::Program& program() const { return m_program; }
-    const DeviceScene& device_scene() const { return m_scene; }
+    // Pixels per kernel batch: the wavefront's size, or the image if it is smaller.
+    std::uint32_t batch_pixels() const { return m_batch_pixels; }
+
+    const Integrator& integrator() const { return *m_integrator; }
+    const cl::Program& program() const { return m_integrator->program(); }
+    const DeviceScene& device_scene() const { return *m_scene; }
+    const RenderSettings& settings() const { return m_settings; }
 
     // The mean of the samples so far, linear RGB, alpha 1.
     Film film() const;
     // Per-pixel sample variance of the samples so far (unbiased, n - 1 in the denominator):
     // what a Z-test against a reference needs. Path integrator only; zero elsewhere.
     Film variance() const;
+    // The film's sums and sample counts, which add up across renders of disjoint ranges.
+    FilmSums sums() const;
 
 private:
-    void run_aov_batch();
-    void run_path_batch();
-    void run_megakernel_batch();
-    void run_whitted_batch(); // [whitted hook]
+    // Restarts the film and rebuilds what a scene update made stale.
+    void follow_scene_updates();
 
     const cl::Context& m_context;
+    std::shared_ptr<const DeviceScene> m_scene;
+    std::uint64_t m_scene_revision;
+    KernelFeatures m_program_features;  // the features m_integrator's program was built for
     RenderSettings m_settings;
-    DeviceScene m_scene;
+    RenderSetup m_setup;
+    Camera m_camera;
     dev::GcRenderParams m_params{};
-    bool m_megakernel = false;  // path integrator as megakernel.cl (before m_program: it picks the file)
-    cl::Program m_program;
-    std::uint32_t m_batch = 0;          // pixels per pass
-    std::uint32_t m_path_capacity = 0;  // path slots (>= m_batch; samples * pixels per pass)
-    std::uint32_t m_samples = 0;
-    PassPlanner m_planner;              // samples per pass of the megakernel; pass times of any form
-    bool m_sync_counts = false;         // wavefront: the host reads each bounce's queue lengths back (CPUs)
-    WavefrontLaunches m_launches;       // wavefront: each launch's width (from the last batch on GPUs)
-    std::vector<std::uint32_t> m_last_queue_lengths;  // wavefront: see last_queue_lengths()
-    std::uint32_t m_last_queue_paths = 0;
-    bool m_lengths_on_device = false;   // m_queue_lengths holds lengths not yet read
-
-    cl::Buffer<glm::vec4> m_film;
-    cl::Buffer<glm::vec4> m_film_squares;
-    // Path integrator state (empty for the aov integrator).
-    cl::Buffer<dev::GcRay> m_rays;
-    cl::Buffer<dev::GcHit> m_hits;
-    cl::Buffer<dev::GcPathState> m_paths;
-    cl::Buffer<std::uint32_t> m_queue_a;
-    cl::Buffer<std::uint32_t> m_queue_b;
-    cl::Buffer<dev::GcShadowRay> m_shadow_rays;
-    cl::Buffer<std::uint32_t> m_counters;
-    cl::Buffer<std::uint32_t> m_queue_lengths;  // per depth: rays queued for the next, shadow rays
-
-    cl::Kernel m_aov;
-    cl::Kernel m_generate;
-    cl::Kernel m_extend;
-    cl::Kernel m_shade;
-    cl::Kernel m_shadow;
-    cl::Kernel m_accumulate;
-    cl::Kernel m_whitted; // [whitted hook]
-    cl::Kernel m_path_megakernel;
+    std::uint32_t m_batch_pixels = 0;
+    std::unique_ptr<Integrator> m_integrator;
+    PassPlanner m_planner;  // samples per pass where planned by time; pass times of any integrator
+    FilmBuffers m_film;
+    std::uint32_t m_sample_count = 0;
+    std::uint32_t m_next_sample = 0;
 };
-
-// The program file each integrator is built from.
-// The path integrator's form on `device`: one kernel per path (megakernel.cl) on CPUs, the
-// wavefront stages (wavefront.cl) on GPUs, unless `form` names one; both give the same bits
-// on one device.
-bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form = PathKernelForm::Auto);
-const char* integrator_program(IntegratorKind kind, bool megakernel);
-
-// Default paths in flight per pass: as many as a GPU's memory allows up to 2^24 (its passes'
-// fixed costs shrink with each path added), 2^16 on CPUs (small enough for their caches).
-inline constexpr std::uint32_t kGpuWavefrontPaths = 1u << 24;
-inline constexpr std::uint32_t kCpuWavefrontPaths = 1u << 16;
-// Device bytes a wavefront path slot takes: ray, hit, path state, two queue entries, shadow ray.
-inline constexpr std::uint64_t kWavefrontBytesPerPath = sizeof(dev::GcRay) + sizeof(dev::GcHit) +
-                                                        sizeof(dev::GcPathState) + 2 * sizeof(std::uint32_t) +
-                                                        sizeof(dev::GcShadowRay);
-std::uint32_t default_wavefront_size(const cl::DeviceInfo& device);
 
 }  // namespace gc

@@ -254,7 +254,18 @@ float total_emitter_power(const Scene& scene)
     return static_cast<float>(total);
 }
 
-dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera, const RenderSettings& settings)
+SceneSummary summarize(const Scene& scene)
+{
+    SceneSummary summary;
+    summary.triangles = static_cast<std::uint32_t>(scene.triangle_count());
+    summary.emitters = static_cast<std::uint32_t>(make_emitters(scene).size());
+    summary.point_lights = static_cast<std::uint32_t>(scene.point_lights.size());
+    summary.textures = static_cast<std::uint32_t>(scene.textures.size());
+    summary.emitter_power = total_emitter_power(scene);
+    return summary;
+}
+
+dev::GcRenderParams make_render_params(const SceneSummary& scene, const Camera& camera, const RenderSettings& settings)
 {
     dev::GcRenderParams p{};
     p.camera = make_camera(camera, settings.width, settings.height);
@@ -265,17 +276,22 @@ dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera,
     p.max_depth = settings.max_depth;
     p.integrator = integrator_code(settings.integrator);
     p.aov = aov_code(settings.aov);
-    p.num_triangles = static_cast<std::uint32_t>(scene.triangle_count());
-    p.num_emitters = static_cast<std::uint32_t>(make_emitters(scene).size());  // zero-area emitters dropped
-    p.num_point_lights = static_cast<std::uint32_t>(scene.point_lights.size());
-    p.num_textures = static_cast<std::uint32_t>(scene.textures.size());
+    p.num_triangles = scene.triangles;
+    p.num_emitters = scene.emitters;
+    p.num_point_lights = scene.point_lights;
+    p.num_textures = scene.textures;
     p.rr_depth = settings.rr_depth;
-    p.emitter_power = total_emitter_power(scene);
+    p.emitter_power = scene.emitter_power;
     p.pixel_offset = 0;
     p.pixel_count = p.width * p.height;
     p.samples_in_pass = 1;
     p.pixels_per_item = 1;
     return p;
+}
+
+dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera, const RenderSettings& settings)
+{
+    return make_render_params(summarize(scene), camera, settings);
 }
 
 void set_environment_map(dev::GcRenderParams& params, const RenderSettings& settings, std::uint32_t width,

@@ -35,8 +35,20 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene);
 // kernels compute (gc_light_pdf_w), consistent with make_emitters' selection probabilities.
 float total_emitter_power(const Scene& scene);
 
+// What the kernels' parameter block says about a scene: its counts and the light pdf's
+// normalisation. Kept by a device scene, so that a render needs no host scene.
+struct SceneSummary {
+    std::uint32_t triangles = 0;
+    std::uint32_t emitters = 0;  // zero-area emitters dropped, as make_emitters drops them
+    std::uint32_t point_lights = 0;
+    std::uint32_t textures = 0;
+    float emitter_power = 0.0f;  // total_emitter_power
+};
+SceneSummary summarize(const Scene& scene);
+
 // The kernels' parameter block for a whole-image pass; the renderer then sets the batch
 // (pixel_offset/pixel_count) and sample_index per pass. Shared by the OpenCL and Vulkan paths.
+dev::GcRenderParams make_render_params(const SceneSummary& scene, const Camera& camera, const RenderSettings& settings);
 dev::GcRenderParams make_render_params(const Scene& scene, const Camera& camera, const RenderSettings& settings);
 
 // Points `params` at the environment map of settings.env_map_path, uploaded as width x height

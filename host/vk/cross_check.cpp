@@ -2,7 +2,10 @@
 
 #include <chrono>
 #include <cstdio>
+#include <memory>
 
+#include "host/render/environment.h"
+#include "host/render/render_loop.h"
 #include "host/render/renderer.h"
 #include "host/render/scene_convert.h"
 #include "host/vk/compute_reference.h"
@@ -23,12 +26,12 @@ RenderSettings aov_settings(RenderSettings s, AovKind kind)
 }
 
 // Both render_* time only the sample loop (not program builds or uploads) into *seconds.
-Film render_cl(const cl::Context& context, const RenderSetup& setup, const Scene& scene, const FlatBvh& bvh,
+Film render_cl(const cl::Context& context, const RenderSetup& setup, const std::shared_ptr<const DeviceScene>& scene,
                const Camera& camera, const RenderSettings& settings, std::uint32_t spp, double* seconds = nullptr)
 {
-    Renderer renderer(context, scene, bvh, camera, settings, setup);
+    Renderer renderer(context, scene, camera, settings, setup);
     const auto t0 = Clock::now();
-    while (renderer.samples_done() < spp) renderer.render_sample();
+    render_to(renderer, spp);
     if (seconds) *seconds = seconds_since(t0);
     return renderer.film();
 }
@@ -76,14 +79,14 @@ std::string radiance_lines(const std::string& integrator, const RadianceAgreemen
 
 // Renders `integrator` with both APIs at settings.spp and compares the radiance.
 RadianceAgreement compare_integrator(const cl::Context& cl_context, const RenderSetup& setup,
-                                     const Context& vk_context, const Scene& scene, const FlatBvh& bvh,
+                                     const std::shared_ptr<const DeviceScene>& cl_scene, const Context& vk_context, const Scene& scene, const FlatBvh& bvh,
                                      const Camera& camera, const RenderSettings& settings,
                                      IntegratorKind integrator, double& cl_seconds_per_spp, double& vk_seconds_per_spp)
 {
     RenderSettings s = settings;
     s.integrator = integrator;
     double cl_seconds = 0.0, vk_seconds = 0.0;
-    const Film cl_film = render_cl(cl_context, setup, scene, bvh, camera, s, settings.spp, &cl_seconds);
+    const Film cl_film = render_cl(cl_context, setup, cl_scene, camera, s, settings.spp, &cl_seconds);
     const Film vk_film = render_vk(vk_context, scene, bvh, camera, s, settings.spp, &vk_seconds);
     cl_seconds_per_spp = cl_seconds / settings.spp;
     vk_seconds_per_spp = vk_seconds / settings.spp;
@@ -135,13 +138,17 @@ CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_co
     report.height = static_cast<std::uint32_t>(settings.height);
     report.spp = settings.spp;
 
+    // One upload shared by the OpenCL renders of every integrator.
+    const auto cl_scene = std::make_shared<const DeviceScene>(
+        DeviceScene::upload(cl_context, scene, bvh, load_environment_map(settings), setup.tuning));
+
     // OpenCL ray-cast AOVs: per-pixel facts, one sample.
     const RenderSettings id_settings = aov_settings(settings, AovKind::PrimitiveId);
     const RenderSettings depth_settings = aov_settings(settings, AovKind::Depth);
     const std::vector<std::int32_t> cl_ids =
-        ids_from_film(render_cl(cl_context, setup, scene, bvh, camera, id_settings, 1));
+        ids_from_film(render_cl(cl_context, setup, cl_scene, camera, id_settings, 1));
     const std::vector<float> cl_depth =
-        depth_from_film(render_cl(cl_context, setup, scene, bvh, camera, depth_settings, 1));
+        depth_from_film(render_cl(cl_context, setup, cl_scene, camera, depth_settings, 1));
 
     RasterPass raster(vk_context, scene, camera, settings);
     const auto t0 = Clock::now();
@@ -157,9 +164,9 @@ CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_co
     // The compute reference runs the OpenCL traversal code itself: no pixel is excused.
     report.compute_aov = compare_ids_depth(cl_ids, cl_depth, vk_ids, vk_depth, {});
 
-    report.path = compare_integrator(cl_context, setup, vk_context, scene, bvh, camera, settings, IntegratorKind::Path,
+    report.path = compare_integrator(cl_context, setup, cl_scene, vk_context, scene, bvh, camera, settings, IntegratorKind::Path,
                                      report.cl_path_seconds_per_spp, report.vk_path_seconds_per_spp);
-    report.whitted = compare_integrator(cl_context, setup, vk_context, scene, bvh, camera, settings, IntegratorKind::Whitted,
+    report.whitted = compare_integrator(cl_context, setup, cl_scene, vk_context, scene, bvh, camera, settings, IntegratorKind::Whitted,
                                         report.cl_whitted_seconds_per_spp, report.vk_whitted_seconds_per_spp);
     return report;
 }

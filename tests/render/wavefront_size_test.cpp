@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "host/render/renderer.h"
+#include "host/render/wavefront_path.h"
 
 namespace gc {
 namespace {

@@ -12,6 +12,8 @@
 
 #include "gc_packet_lanes.h"
 #include "host/render/device_bvh.h"
+#include "host/render/megakernel_path.h"
+#include "host/render/wavefront_path.h"
 #include "host/scene/load.h"
 #include "tests/cl/cl_test_util.h"
 #include "tests/render/alpha_scenes.h"
@@ -81,6 +83,11 @@ RenderSettings small_path_render(std::uint32_t spp, std::uint32_t seed)
     return s;
 }
 
+bool is_megakernel(const Renderer& renderer)
+{
+    return dynamic_cast<const MegakernelPathIntegrator*>(&renderer.integrator()) != nullptr;
+}
+
 // Renders spp samples through render_samples, in passes as the renderer plans them (or as
 // its settings' samples_per_pass fixes them); returns the samples of each pass.
 std::vector<std::uint32_t> render_in_passes(Renderer& renderer, std::uint32_t spp)
@@ -114,7 +121,7 @@ std::vector<std::uint32_t> expect_grouping_keeps_bits(const cl::Context& context
     const bool mean_same = bit_identical(single.mean, grouped.film());
     const bool variance_same = bit_identical(single.variance, grouped.variance());
     std::printf("%s, %u pixels per launch: samples per pass:%s; mean films %s, variance films %s\n",
-                grouped.uses_megakernel() ? "megakernel" : "wavefront", grouped.wavefront_size(), shown(passes).c_str(),
+                is_megakernel(grouped) ? "megakernel" : "wavefront", grouped.batch_pixels(), shown(passes).c_str(),
                 mean_same ? "identical" : "DIFFER", variance_same ? "identical" : "DIFFER");
     EXPECT_TRUE(mean_same);
     EXPECT_TRUE(variance_same);
@@ -187,7 +194,8 @@ TEST_F(DeterminismTest, QueueLengthsCopiedOnTheDeviceEqualThoseReadBack)
         const FlatBvh bvh = build_bvh(scene);
         Renderer renderer(*context, scene, bvh, camera, s, setup);
         renderer.render_sample();
-        lengths[i].assign(renderer.last_queue_lengths().begin(), renderer.last_queue_lengths().end());
+        const auto& wavefront = dynamic_cast<const WavefrontPathIntegrator&>(renderer.integrator());
+        lengths[i].assign(wavefront.last_queue_lengths().begin(), wavefront.last_queue_lengths().end());
     }
     std::printf("rays queued for the next depth / shadow rays, depth by depth (read back | copied on the device):\n");
     for (std::size_t d = 0; d < lengths[0].size() / 2; ++d)
@@ -259,7 +267,7 @@ std::uint32_t expect_megakernel_equals_wavefront(const cl::Context& context, con
     for (int i = 0; i < 2; ++i) {
         Renderer renderer(context, scene, bvh, camera, s, path_kernel(forms[i]));
         const std::vector<std::uint32_t> passes = render_in_passes(renderer, s.spp);
-        if (renderer.uses_megakernel()) {
+        if (is_megakernel(renderer)) {
             megakernel_passes = passes;
             pixels_per_item = renderer.pixels_per_item();
         }

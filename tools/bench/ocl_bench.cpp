@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/render/pass_planner.h"
+#include "host/render/megakernel_path.h"
 #include "host/render/renderer.h"
 #include "tools/bench/timing.h"
 
@@ -139,8 +140,8 @@ PathFigures path_samples(const cl::Context& context, const Scene& scene, const F
     Renderer renderer(context, scene, bvh, camera, settings, setup);
     figures.pixels = double(settings.width) * double(settings.height);
     figures.scene_bytes = double(renderer.device_scene().bytes());
-    figures.wavefront = renderer.wavefront_size();
-    figures.megakernel = renderer.uses_megakernel();
+    figures.wavefront = renderer.batch_pixels();
+    figures.megakernel = dynamic_cast<const MegakernelPathIntegrator*>(&renderer.integrator()) != nullptr;
     renderer.render_sample(); // warm-up: PoCL builds its work-group functions on first launch
     // A long render spends nearly all its time in passes of the planner's steady size, so
     // that is what is timed. The planner at most doubles per pass, from 1 to
