@@ -91,6 +91,42 @@ inline Scene uv_sphere(int stacks, int slices, float radius)
     return s;
 }
 
+// A closed tube of `sides` around a (2, 3) torus knot sampled at `segments` points: 2 *
+// segments * sides triangles. It stands in for a scanned model such as the Stanford dragon:
+// one surface that winds past itself, so that boxes of distant parts overlap and a ray
+// crosses many layers, with long thin triangles along the tube. The knot's strands stay at
+// least 1.66 apart, so a tube radius below 0.8 does not intersect itself. Shared vertices are
+// computed once, as in uv_sphere.
+inline Scene torus_knot(int segments, int sides, float tube_radius)
+{
+    Scene s = empty_scene();
+    const auto curve = [](float t) {
+        const float r = 2.0f + std::cos(3.0f * t);
+        return Vec3(r * std::cos(2.0f * t), r * std::sin(2.0f * t), -std::sin(3.0f * t));
+    };
+    std::vector<Point3> grid;
+    grid.reserve(static_cast<std::size_t>(segments * sides));
+    for (int i = 0; i < segments; ++i) {
+        const float t = 6.2831853f * static_cast<float>(i) / static_cast<float>(segments);
+        const Vec3 c = curve(t);
+        const Vec3 tangent = normalize(curve(t + 1e-3f) - curve(t - 1e-3f));
+        const Vec3 n = normalize(cross(tangent, Vec3(0, 0, 1)));
+        const Vec3 b = cross(tangent, n);
+        for (int j = 0; j < sides; ++j) {
+            const float phi = 6.2831853f * static_cast<float>(j) / static_cast<float>(sides);
+            const Vec3 p = c + tube_radius * (std::cos(phi) * n + std::sin(phi) * b);
+            grid.emplace_back(p.x, p.y, p.z);
+        }
+    }
+    auto at = [&](int i, int j) { return grid[static_cast<std::size_t>((i % segments) * sides + (j % sides))]; };
+    for (int i = 0; i < segments; ++i)
+        for (int j = 0; j < sides; ++j) {
+            add_triangle(s, at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            add_triangle(s, at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    return s;
+}
+
 // Rays with origins in the (enlarged) scene box: half towards random points of random
 // triangles (so most hit), half in random directions.
 inline std::vector<Ray> mixed_rays(const Scene& scene, std::size_t n, std::uint32_t seed)

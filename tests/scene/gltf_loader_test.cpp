@@ -1,5 +1,5 @@
-// glTF loading: the shared sample scenes, and small synthetic .gltf/.glb files that exercise
-// transforms, materials, cameras, lights and every validation path.
+// glTF loading: the sample scenes in tests/data, and small synthetic .gltf/.glb files that
+// exercise embedded textures, transforms, materials, cameras, lights and every validation path.
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -10,6 +10,7 @@
 #include "host/scene/load.h"
 #include "host/scene/triangle_sink.h"
 #include "scene_test_util.h"
+#include "tiny_images.h"
 
 namespace gc {
 namespace {
@@ -123,13 +124,11 @@ void expect_invariants(const Scene& s)
     }
 }
 
-// --- shared sample scenes
+// --- sample scenes (tests/data/scenes; sources and licences in their READMEs)
 
-TEST(GltfShared, BoxTextured)
+TEST(GltfSample, BoxTextured)
 {
-    const auto path = test::shared_scene("box-textured/BoxTextured.gltf");
-    GC_SKIP_IF_MISSING(path);
-    const Timed t = timed_load(path);
+    const Timed t = timed_load(test::test_data_scene("box-textured/BoxTextured.gltf"));
     const Scene& s = t.scene;
     std::printf("  box-textured: %zu triangles, %zu textures in %.1f ms\n", s.triangle_count(), s.textures.size(), t.ms);
     expect_invariants(s);
@@ -144,31 +143,11 @@ TEST(GltfShared, BoxTextured)
     expect_front_faces_consistent(s);
 }
 
-TEST(GltfShared, DamagedHelmet)
+// The Khronos Avocado with its textures reduced to 256x256 (the README says how): TANGENT,
+// a normal map and a packed metallic-roughness texture in external PNGs.
+TEST(GltfSample, Avocado)
 {
-    const auto path = test::shared_scene("damaged-helmet/DamagedHelmet.glb");
-    GC_SKIP_IF_MISSING(path);
-    const Timed t = timed_load(path);
-    const Scene& s = t.scene;
-    std::printf("  damaged-helmet: %zu triangles, %zu textures in %.1f ms\n", s.triangle_count(), s.textures.size(), t.ms);
-    expect_invariants(s);
-    EXPECT_EQ(s.triangle_count(), 15452u);
-    ASSERT_EQ(s.materials.size(), 1u);
-    const Material& m = s.materials[0];
-    EXPECT_GE(m.albedo_texture, 0);
-    EXPECT_GE(m.metallic_roughness_texture, 0);
-    EXPECT_GE(m.normal_texture, 0);
-    EXPECT_GE(m.emission_texture, 0);
-    EXPECT_TRUE(s.textures[static_cast<std::size_t>(m.albedo_texture)].srgb);
-    EXPECT_FALSE(s.textures[static_cast<std::size_t>(m.normal_texture)].srgb);
-    EXPECT_TRUE(m.is_emissive());
-}
-
-TEST(GltfShared, Avocado)
-{
-    const auto path = test::shared_scene("avocado/Avocado.gltf");
-    GC_SKIP_IF_MISSING(path);
-    const Timed t = timed_load(path);
+    const Timed t = timed_load(test::test_data_scene("avocado/Avocado.gltf"));
     std::printf("  avocado: %zu triangles in %.1f ms\n", t.scene.triangle_count(), t.ms);
     expect_invariants(t.scene);
     EXPECT_EQ(t.scene.triangle_count(), 682u);
@@ -181,24 +160,100 @@ TEST(GltfShared, Avocado)
     }
 }
 
-TEST(GltfShared, RetroUfoHierarchy)
+TEST(GltfSample, RetroUfoHierarchy)
 {
-    const auto path = test::shared_scene("retro-ufo/retroufo.glb");
-    GC_SKIP_IF_MISSING(path);
-    const Timed t = timed_load(path);
+    const Timed t = timed_load(test::test_data_scene("retro-ufo/retroufo.glb"));
     std::printf("  retro-ufo: %zu triangles in %.1f ms\n", t.scene.triangle_count(), t.ms);
     expect_invariants(t.scene);
     EXPECT_EQ(t.scene.triangle_count(), 16428u);
 }
 
-TEST(GltfShared, TruncatedHelmetIsAnError)
+// A .glb whose four material textures are images inside its BIN chunk (a JPEG base colour,
+// PNG metallic-roughness, normal and emissive maps), the layout exporters write for a
+// self-contained asset. The one-triangle geometry with uvs comes first, then the images,
+// each 4-byte aligned.
+std::vector<unsigned char> glb_with_embedded_textures()
 {
-    const auto path = test::shared_scene("damaged-helmet/DamagedHelmet.glb");
-    GC_SKIP_IF_MISSING(path);
-    const std::vector<unsigned char> bytes = test::read_bytes(path);
+    std::vector<unsigned char> bin = triangle_bin();
+    const float uvs[6] = {0, 0, 1, 0, 0, 1};
+    bin.resize(104);
+    std::memcpy(bin.data() + 80, uvs, sizeof uvs);
+    Doc doc;
+    doc.attributes = R"("POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 3)";
+    doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+    doc.extra_accessors = R"(, {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"})";
+    doc.extra_buffer_views = R"(, {"buffer": 0, "byteOffset": 80, "byteLength": 24})";
+    std::string images;
+    const std::pair<const std::vector<unsigned char>*, const char*> encoded[4] = {
+        {&test::k_jpeg_checker_4x4, "image/jpeg"},
+        {&test::k_png_metallic_roughness_4x4, "image/png"},
+        {&test::k_png_normal_4x4, "image/png"},
+        {&test::k_png_emission_4x4, "image/png"}};
+    for (int i = 0; i < 4; ++i) {
+        while (bin.size() % 4) bin.push_back(0);
+        const std::vector<unsigned char>& bytes = *encoded[i].first;
+        doc.extra_buffer_views += R"(, {"buffer": 0, "byteOffset": )" + std::to_string(bin.size()) +
+                                  R"(, "byteLength": )" + std::to_string(bytes.size()) + "}";
+        images += std::string(i ? ", " : "") + R"({"bufferView": )" + std::to_string(3 + i) + R"(, "mimeType": ")" +
+                  encoded[i].second + "\"}";
+        bin.insert(bin.end(), bytes.begin(), bytes.end());
+    }
+    while (bin.size() % 4) bin.push_back(0);
+    doc.buffer_length = std::to_string(bin.size());
+    doc.top = R"("materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                 "metallicRoughnessTexture": {"index": 1}}, "normalTexture": {"index": 2},
+                 "emissiveTexture": {"index": 3}, "emissiveFactor": [1, 1, 1]}],
+              "textures": [{"source": 0}, {"source": 1}, {"source": 2}, {"source": 3}],
+              "images": [)" + images + "],";
+    return make_glb(doc, bin);
+}
+
+TEST(GltfSynthetic, GlbEmbeddedTextures)
+{
     ScratchDir dir;
-    for (std::size_t n : {std::size_t(0), std::size_t(11), std::size_t(20), std::size_t(1000), bytes.size() / 2,
-                          bytes.size() - 1}) {
+    const Scene s = load_scene(dir.write("textured.glb", glb_with_embedded_textures()));
+    expect_invariants(s);
+    ASSERT_EQ(s.triangle_count(), 1u);
+    EXPECT_EQ(s.uvs.size(), 3u);
+    ASSERT_EQ(s.materials.size(), 1u);
+    const Material& m = s.materials[0];
+    ASSERT_GE(m.albedo_texture, 0);
+    ASSERT_GE(m.metallic_roughness_texture, 0);
+    ASSERT_GE(m.normal_texture, 0);
+    ASSERT_GE(m.emission_texture, 0);
+    EXPECT_TRUE(m.is_emissive());
+    const Texture& albedo = s.textures[static_cast<std::size_t>(m.albedo_texture)];
+    const Texture& mr = s.textures[static_cast<std::size_t>(m.metallic_roughness_texture)];
+    const Texture& normal = s.textures[static_cast<std::size_t>(m.normal_texture)];
+    const Texture& emission = s.textures[static_cast<std::size_t>(m.emission_texture)];
+    // Colour textures are sRGB, data textures linear.
+    EXPECT_TRUE(albedo.srgb);
+    EXPECT_TRUE(emission.srgb);
+    EXPECT_FALSE(mr.srgb);
+    EXPECT_FALSE(normal.srgb);
+    for (const Texture* t : {&albedo, &mr, &normal, &emission}) {
+        EXPECT_EQ(t->width, 4);
+        EXPECT_EQ(t->height, 4);
+        ASSERT_EQ(t->texels.size(), 16u);
+    }
+    // The PNGs decode to their exact bytes (RGBA8, R in the low byte, opaque).
+    EXPECT_EQ(normal.texels[5], 0xFFFF8080u);
+    EXPECT_EQ(mr.texels[5], 0xFFFF8000u);
+    EXPECT_EQ(emission.texels[5], 0xFF28C8FFu);
+    // The JPEG is lossy: its checker's first texel is reddish, the one beside it bluish.
+    const auto channel = [](std::uint32_t texel, int c) { return int((texel >> (8 * c)) & 0xFF); };
+    EXPECT_GT(channel(albedo.texels[0], 0), channel(albedo.texels[0], 2));
+    EXPECT_LT(channel(albedo.texels[2], 0), channel(albedo.texels[2], 2));
+}
+
+// Cut anywhere (in the header, the JSON chunk, the geometry, an embedded image, the last byte),
+// a .glb with embedded images is an input error naming the file, not a crash or a partial scene.
+TEST(GltfSynthetic, TruncatedTexturedGlbIsAnError)
+{
+    const std::vector<unsigned char> bytes = glb_with_embedded_textures();
+    ScratchDir dir;
+    for (std::size_t n : {std::size_t(0), std::size_t(11), std::size_t(20), std::size_t(200), bytes.size() / 2,
+                          bytes.size() - 600, bytes.size() - 1}) {
         const auto p = dir.write("cut.glb", std::vector<unsigned char>(bytes.begin(), bytes.begin() + static_cast<long>(n)));
         expect_input_error([&] { load_scene(p); }, {"cut.glb"});
     }

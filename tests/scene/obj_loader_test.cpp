@@ -1,4 +1,4 @@
-// OBJ/MTL loading: the bundled and shared scenes, material mapping, and small synthetic files.
+// OBJ/MTL loading: the bundled scenes, material mapping, and generated and small synthetic files.
 #include <chrono>
 #include <cmath>
 
@@ -108,10 +108,9 @@ TEST(ObjCornell, SphereMaterialsAndNormals)
     EXPECT_GT(with_normals, 2000u);
 }
 
-TEST(ObjCornell, SharedGlossyIsPhongAndClamped)
+TEST(ObjCornell, GlossyIsPhongAndClamped)
 {
-    const auto path = test::shared_scene("cornell-box/CornellBox-Glossy.obj");
-    GC_SKIP_IF_MISSING(path);
+    const auto path = test::repo_scene("cornell-box/CornellBox-Glossy.obj");
     testing::internal::CaptureStderr();
     const Scene s = load_scene(path);
     const std::string err = testing::internal::GetCapturedStderr();
@@ -133,57 +132,82 @@ TEST(ObjCornell, SharedGlossyIsPhongAndClamped)
     EXPECT_NEAR(ls.albedo.x, 0.486f, 1e-6f);  // Kd untouched
 }
 
-TEST(ObjCornell, SharedWaterCount)
+TEST(ObjCornell, WaterCount)
 {
-    const auto path = test::shared_scene("cornell-box/CornellBox-Water.obj");
-    GC_SKIP_IF_MISSING(path);
-    const Scene s = load_scene(path);
+    const Scene s = load_cornell("CornellBox-Water.obj");
     expect_invariants(s);
     std::printf("  CornellBox-Water: %zu triangles\n", s.triangle_count());
     EXPECT_EQ(s.triangle_count(), 7088u);
 }
 
-TEST(ObjShared, Bunny)
+// A large position-only triangle mesh as OBJ text, the shape of a scanned model's file
+// ("v x y z" lines, then "f a b c" with 1-based indices, no normals or uvs): an n x n grid of
+// quads over [-1, 1]^2, each split in two, with a gentle height field so that the normals
+// vary. 2 n^2 triangles; `header` goes first (an mtllib line, say).
+std::string position_only_grid_obj(int n, const std::string& header = "")
 {
-    const auto path = test::shared_scene("stanford-bunny/stanford-bunny.obj");
-    GC_SKIP_IF_MISSING(path);
+    std::string out = header;
+    char line[96];
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double x = -1.0 + 2.0 * i / n;
+            const double y = -1.0 + 2.0 * j / n;
+            std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", x, y, 0.1 * std::sin(3 * x) * std::cos(2 * y));
+            out += line;
+        }
+    const auto at = [n](int i, int j) { return j * (n + 1) + i + 1; };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            std::snprintf(line, sizeof line, "f %d %d %d\nf %d %d %d\n", at(i, j), at(i + 1, j), at(i + 1, j + 1),
+                          at(i, j), at(i + 1, j + 1), at(i, j + 1));
+            out += line;
+        }
+    return out;
+}
+
+// A scan-sized mesh (70k triangles) without any material: everything gets the default.
+TEST(ObjGenerated, LargePositionOnlyMesh)
+{
+    ScratchDir dir;
+    const auto path = dir.write("grid.obj", position_only_grid_obj(187));
     const auto t0 = std::chrono::steady_clock::now();
     const Scene s = load_scene(path);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("  bunny: %zu triangles in %.1f ms\n", s.triangle_count(), ms);
+    std::printf("  grid: %zu triangles in %.1f ms\n", s.triangle_count(), ms);
     expect_invariants(s);
-    EXPECT_EQ(s.triangle_count(), 69451u);
+    EXPECT_EQ(s.triangle_count(), 2u * 187u * 187u);
     ASSERT_EQ(s.materials.size(), 1u);
     EXPECT_EQ(s.materials[0].name, "default");
     EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.5f));
     const Bounds3 b = s.bounds();
-    EXPECT_NEAR(b.lo.x, -0.0947f, 1e-3f);
-    EXPECT_NEAR(b.hi.y, 0.1873f, 1e-3f);
+    EXPECT_EQ(b.lo.x, -1.0f);
+    EXPECT_EQ(b.hi.y, 1.0f);
+    EXPECT_NEAR(b.hi.z, 0.1f, 1e-3f);
 }
 
-TEST(ObjShared, DragonMissingMtl)
+// A 100k-triangle mesh whose mtllib names a file that is not there: one warning of ours, the
+// default material, and tinyobjloader's own duplicate message filtered out.
+TEST(ObjGenerated, LargeMeshMissingMtl)
 {
-    const auto path = test::shared_scene("stanford-dragon-100k/dragon.obj");
-    GC_SKIP_IF_MISSING(path);
+    ScratchDir dir;
+    const auto path = dir.write("big.obj", position_only_grid_obj(224, "mtllib big.mtl\n"));
     testing::internal::CaptureStderr();
     const auto t0 = std::chrono::steady_clock::now();
     const Scene s = load_scene(path);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const std::string err = testing::internal::GetCapturedStderr();
-    std::printf("  dragon: %zu triangles in %.1f ms\n  stderr: %s", s.triangle_count(), ms, err.c_str());
+    std::printf("  big: %zu triangles in %.1f ms\n  stderr: %s", s.triangle_count(), ms, err.c_str());
     expect_invariants(s);
-    EXPECT_EQ(s.triangle_count(), 100000u);
+    EXPECT_EQ(s.triangle_count(), 2u * 224u * 224u);
     ASSERT_EQ(s.materials.size(), 1u);
     EXPECT_EQ(s.materials[0].name, "default");
-    EXPECT_NE(err.find("material library 'dragon.mtl' not found; using the default material"), std::string::npos);
+    EXPECT_NE(err.find("material library 'big.mtl' not found; using the default material"), std::string::npos);
     EXPECT_EQ(err.find("Failed to load"), std::string::npos);  // tinyobjloader's duplicate is filtered
 }
 
-TEST(ObjShared, SpotTexture)
+TEST(ObjSpot, Texture)
 {
-    const auto path = test::shared_scene("spot/spot_textured.obj");
-    GC_SKIP_IF_MISSING(path);
-    const Scene s = load_scene(path);
+    const Scene s = load_scene(test::test_data_scene("spot/spot_textured.obj"));
     expect_invariants(s);
     EXPECT_EQ(s.triangle_count(), 5856u);
     ASSERT_EQ(s.textures.size(), 1u);
@@ -210,11 +234,9 @@ TEST(ObjShared, SpotTexture)
     EXPECT_GT(hi.x - lo.x, 0.5f);
 }
 
-TEST(ObjShared, SpotQuadsFanToSameCount)
+TEST(ObjSpot, QuadsFanToSameCount)
 {
-    const auto path = test::shared_scene("spot/spot_quadrangulated.obj");
-    GC_SKIP_IF_MISSING(path);
-    const Scene s = load_scene(path);
+    const Scene s = load_scene(test::test_data_scene("spot/spot_quadrangulated.obj"));
     expect_invariants(s);
     EXPECT_EQ(s.triangle_count(), 5856u);
 }

@@ -1,4 +1,4 @@
-// Helpers for the scene tests: scratch files, shared-scene paths, error-message checks.
+// Helpers for the scene tests: scratch files, in-repo scene paths, error-message checks.
 #pragma once
 
 #include <fstream>
@@ -50,9 +50,9 @@ private:
     std::filesystem::path m_path;
 };
 
-inline std::filesystem::path shared_scene(const std::string& rel)
+inline std::filesystem::path test_data_scene(const std::string& rel)
 {
-    return std::filesystem::path(GC_TEST_SHARED_DIR) / "scenes" / rel;
+    return std::filesystem::path(GC_TEST_SOURCE_DIR) / "tests/data/scenes" / rel;
 }
 inline std::filesystem::path repo_scene(const std::string& rel)
 {
@@ -84,8 +84,3 @@ inline std::string expect_input_error(const std::function<void()>& f, std::initi
 }
 
 }  // namespace gc::test
-
-#define GC_SKIP_IF_MISSING(path) \
-    do { \
-        if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared scene not found: " << (path); \
-    } while (0)

@@ -18,8 +18,8 @@
 //     variances; z < 5. Per-pixel tests cannot see a 1-2% global bias at this spp; this can.
 //
 // On failure the render (NAME-test.exr), its per-sample variance (NAME-variance.exr) and a heat
-// map (NAME-heat.exr) are written beside the test binary. Scenes outside the repo (the bunny
-// in ../shared) skip when absent.
+// map (NAME-heat.exr) are written beside the test binary. Every reference's scene is in the
+// repository.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -192,7 +192,7 @@ TEST_P(ReferenceTest, MatchesMitsubaWithinNoise)
     const fs::path json = reference_json(c.name);
     ASSERT_TRUE(fs::exists(json)) << json;
     Reference ref = read_reference(json);
-    if (!fs::exists(ref.scene)) GTEST_SKIP() << "scene not found: " << ref.scene << " (shared scenes absent?)";
+    ASSERT_TRUE(fs::exists(ref.scene)) << ref.scene;
     ref.settings.spp = c.spp;
     Scene scene = load_scene(ref.scene);
     if (c.pbr_as_lambert)
@@ -248,7 +248,7 @@ TEST_F(ReferenceTest, DetectsATenPercentAlbedoChange)
 // path is one bounce, L = albedo * env), so it gets more samples for its texture edges.
 INSTANTIATE_TEST_SUITE_P(Refs, ReferenceTest,
                          ::testing::Values(RefCase{"cornell-original", 128}, RefCase{"cornell-mirror", 128},
-                                           RefCase{"cornell-sphere", 128}, RefCase{"bunny-env", 128},
+                                           RefCase{"cornell-sphere", 128}, RefCase{"spot-env", 128},
                                            RefCase{"box-textured", 256, true}, RefCase{"normals-bent", 128},
                                            RefCase{"normals-flipped-glass", 256}),
                          [](const ::testing::TestParamInfo<RefCase>& param_info) {

@@ -47,7 +47,7 @@ inline Rendered render(const cl::Context& context, const Scene& scene, const Cam
     return out;
 }
 
-// The references' view of the Cornell boxes (../shared/refs/*.json).
+// The references' view of the Cornell boxes (tests/data/refs/cornell-*.json).
 inline Camera cornell_camera()
 {
     Camera camera;
