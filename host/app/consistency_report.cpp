@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
-
-#include "host/util/error.h"
 
 namespace gc {
 namespace {
@@ -50,67 +47,16 @@ std::string pair_name(const ConsistencyPair& p) { return std::to_string(p.a) + "
 
 }  // namespace
 
-ConsistencyPair compare_renders(const Film& a, const Film& b, const ConsistencyTolerances& tol)
-{
-    if (a.width() != b.width() || a.height() != b.height())
-        throw InputError("consistency: renders differ in size (" + std::to_string(a.width()) + "x" +
-                         std::to_string(a.height()) + " vs " + std::to_string(b.width()) + "x" +
-                         std::to_string(b.height()) + ")");
-    if (a.empty()) throw InputError("consistency: the renders are empty");
-
-    ConsistencyPair p;
-    p.pixels = a.pixel_count();
-    double rel = 0.0, sum_a = 0.0, sum_b = 0.0;
-    std::size_t within = 0, finite = 0;
-    for (std::size_t i = 0; i < p.pixels; ++i) {
-        const float* pa = a.data().data() + i * 4;
-        const float* pb = b.data().data() + i * 4;
-        bool ok = true;
-        bool is_finite = true;
-        for (int c = 0; c < 3; ++c) is_finite = is_finite && std::isfinite(pa[c]) && std::isfinite(pb[c]);
-        if (!is_finite) {
-            ++p.nonfinite;
-            continue;
-        }
-        ++finite;
-        p.identical += std::memcmp(pa, pb, 3 * sizeof(float)) == 0;
-        for (int c = 0; c < 3; ++c) {
-            const double va = pa[c];
-            const double vb = pb[c];
-            const double diff = std::fabs(vb - va);
-            rel += diff * diff / (va * va + 1e-2);
-            p.max_abs = std::max(p.max_abs, diff);
-            ok = ok && (diff <= tol.pixel_rel_tol * std::max(std::fabs(va), std::fabs(vb)) || diff <= tol.pixel_abs_tol);
-            sum_a += va;
-            sum_b += vb;
-        }
-        within += ok;
-    }
-    // Non-finite pixels count as outside the tolerance: divide by all pixels.
-    p.within = double(within) / double(p.pixels);
-    if (finite > 0) {
-        p.rel_mse = rel / (3.0 * double(finite));
-        p.mean_a = sum_a / (3.0 * double(finite));
-        p.mean_b = sum_b / (3.0 * double(finite));
-    }
-
-    if (p.nonfinite > 0) p.why = std::to_string(p.nonfinite) + " pixels with NaN/Inf";
-    else if (p.mean_a == 0.0 && p.mean_b == 0.0) p.why = "both images are black (the comparison proves nothing)";
-    else if (!(p.rel_mse <= tol.max_rel_mse)) p.why = "rel MSE " + format("%.3g", p.rel_mse) + " > " + format("%.3g", tol.max_rel_mse);
-    else if (!(p.within >= tol.min_within))
-        p.why = "only " + percent(p.within) + " of pixels within tolerance (< " + percent(tol.min_within) + ")";
-    p.passed = p.why.empty();
-    return p;
-}
-
-std::vector<ConsistencyPair> compare_all(const std::vector<ConsistencyRender>& renders, const ConsistencyTolerances& tol)
+std::vector<ConsistencyPair> compare_all(const std::vector<ConsistencyRender>& renders, const AgreementLimits& limits)
 {
     std::vector<ConsistencyPair> pairs;
     for (std::size_t i = 0; i < renders.size(); ++i) {
         for (std::size_t j = i + 1; j < renders.size(); ++j) {
-            ConsistencyPair p = compare_renders(renders[i].image, renders[j].image, tol);
+            ConsistencyPair p;
             p.a = i;
             p.b = j;
+            p.diff = compare_images(renders[j].image, renders[i].image, limits.pixel);
+            p.verdict = judge_agreement(p.diff, limits);
             pairs.push_back(std::move(p));
         }
     }
@@ -119,7 +65,7 @@ std::vector<ConsistencyPair> compare_all(const std::vector<ConsistencyRender>& r
 
 bool ConsistencyRun::passed() const
 {
-    return std::all_of(pairs.begin(), pairs.end(), [](const ConsistencyPair& p) { return p.passed; });
+    return std::all_of(pairs.begin(), pairs.end(), [](const ConsistencyPair& p) { return p.verdict.passed(); });
 }
 
 std::string format_report(const ConsistencyRun& run)
@@ -144,17 +90,17 @@ std::string format_report(const ConsistencyRun& run)
                   "within tol", "identical", "result");
     s << line;
     for (const ConsistencyPair& p : run.pairs) {
-        std::snprintf(line, sizeof line, "  %-8s  %-10.3e  %-10.3e  %-12s  %-10s  %s\n", pair_name(p).c_str(), p.rel_mse,
-                      p.max_abs, percent(p.within).c_str(), percent(double(p.identical) / double(p.pixels)).c_str(),
-                      p.passed ? "pass" : ("FAIL: " + p.why).c_str());
+        std::snprintf(line, sizeof line, "  %-8s  %-10.3e  %-10.3e  %-12s  %-10s  %s\n", pair_name(p).c_str(),
+                      p.diff.rel_mse, p.diff.max_abs, percent(p.diff.within_tolerance).c_str(),
+                      percent(p.diff.identical).c_str(), p.verdict.passed() ? "pass" : ("FAIL: " + p.verdict.why).c_str());
         s << line;
     }
-    const ConsistencyTolerances& t = run.tolerances;
+    const AgreementLimits& t = run.tolerances;
     s << "  limits: rel MSE <= " << format("%.3g", t.max_rel_mse) << "; >= " << percent(t.min_within)
       << " of pixels within tolerance, where a pixel is within when every channel has |b - a| <= "
-      << format("%.3g", t.pixel_rel_tol) << " * max(|a|, |b|) or |b - a| <= " << format("%.3g", t.pixel_abs_tol) << "\n";
+      << format("%.3g", t.pixel.rel) << " * max(|a|, |b|) or |b - a| <= " << format("%.3g", t.pixel.abs) << "\n";
     const std::size_t failed = static_cast<std::size_t>(
-        std::count_if(run.pairs.begin(), run.pairs.end(), [](const ConsistencyPair& p) { return !p.passed; }));
+        std::count_if(run.pairs.begin(), run.pairs.end(), [](const ConsistencyPair& p) { return !p.verdict.passed(); }));
     if (failed == 0) s << "consistency: PASSED (" << run.pairs.size() << " pair" << (run.pairs.size() == 1 ? "" : "s") << ")\n";
     else s << "consistency: FAILED (" << failed << " of " << run.pairs.size() << " pairs)\n";
     return s.str();
@@ -163,15 +109,15 @@ std::string format_report(const ConsistencyRun& run)
 std::string format_json(const ConsistencyRun& run)
 {
     std::ostringstream s;
-    const ConsistencyTolerances& t = run.tolerances;
+    const AgreementLimits& t = run.tolerances;
     s << "{\n";
     s << "  \"scene\": " << json_string(run.scene) << ",\n";
     s << "  \"integrator\": " << json_string(run.integrator) << ",\n";
     s << "  \"width\": " << run.width << ", \"height\": " << run.height << ", \"spp\": " << run.spp
       << ", \"seed\": " << run.seed << ",\n";
     s << "  \"tolerances\": {\"max_rel_mse\": " << json_number(t.max_rel_mse)
-      << ", \"min_within\": " << json_number(t.min_within) << ", \"pixel_rel_tol\": " << json_number(t.pixel_rel_tol)
-      << ", \"pixel_abs_tol\": " << json_number(t.pixel_abs_tol) << "},\n";
+      << ", \"min_within\": " << json_number(t.min_within) << ", \"pixel_rel_tol\": " << json_number(t.pixel.rel)
+      << ", \"pixel_abs_tol\": " << json_number(t.pixel.abs) << "},\n";
     s << "  \"devices\": [";
     for (std::size_t i = 0; i < run.renders.size(); ++i) {
         const ConsistencyRender& r = run.renders[i];
@@ -183,12 +129,13 @@ std::string format_json(const ConsistencyRun& run)
     s << "  \"pairs\": [";
     for (std::size_t i = 0; i < run.pairs.size(); ++i) {
         const ConsistencyPair& p = run.pairs[i];
-        s << (i ? ",\n" : "\n") << "    {\"a\": " << p.a << ", \"b\": " << p.b << ", \"rel_mse\": " << json_number(p.rel_mse)
-          << ", \"max_abs\": " << json_number(p.max_abs) << ", \"within\": " << json_number(p.within)
-          << ", \"identical\": " << json_number(double(p.identical) / double(std::max<std::size_t>(p.pixels, 1)))
-          << ", \"pixels\": " << p.pixels << ", \"nonfinite\": " << p.nonfinite
-          << ", \"mean_a\": " << json_number(p.mean_a) << ", \"mean_b\": " << json_number(p.mean_b)
-          << ", \"passed\": " << (p.passed ? "true" : "false") << ", \"why\": " << json_string(p.why) << "}";
+        const ImageDifference& d = p.diff;
+        s << (i ? ",\n" : "\n") << "    {\"a\": " << p.a << ", \"b\": " << p.b << ", \"rel_mse\": " << json_number(d.rel_mse)
+          << ", \"max_abs\": " << json_number(d.max_abs) << ", \"within\": " << json_number(d.within_tolerance)
+          << ", \"identical\": " << json_number(d.identical) << ", \"pixels\": " << d.pixels + d.nonfinite
+          << ", \"nonfinite\": " << d.nonfinite << ", \"mean_a\": " << json_number(d.mean_ref)
+          << ", \"mean_b\": " << json_number(d.mean_test) << ", \"passed\": " << (p.verdict.passed() ? "true" : "false")
+          << ", \"why\": " << json_string(p.verdict.why) << "}";
     }
     s << (run.pairs.empty() ? "" : "\n  ") << "],\n";
     s << "  \"notes\": [";

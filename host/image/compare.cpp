@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "host/util/error.h"
@@ -20,15 +22,31 @@ void require_same_size(const Film& a, const Film& b, const char* what)
 
 bool finite_rgb(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
+bool within(double test, double ref, const PixelTolerance& tol)
+{
+    const double diff = std::fabs(test - ref);
+    if (tol.rule == PixelTolerance::Rule::reference) return diff <= tol.rel * std::fabs(ref) + tol.abs;
+    return diff <= tol.rel * std::max(std::fabs(test), std::fabs(ref)) || diff <= tol.abs;
+}
+
+std::string format(const char* fmt, double value)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, fmt, value);
+    return buffer;
+}
+
+std::string percent(double fraction) { return format("%.3f %%", 100.0 * fraction); }
+
 }  // namespace
 
-ImageDifference compare_images(const Film& test, const Film& ref, double rel_tol, double abs_tol)
+ImageDifference compare_images(const Film& test, const Film& ref, const PixelTolerance& tol)
 {
     require_same_size(test, ref, "image comparison");
     ImageDifference d;
-    double sq = 0, rel = 0;
+    double sq = 0, rel = 0, total_test = 0, total_ref = 0;
     double sum_test[3] = {0, 0, 0}, sum_ref[3] = {0, 0, 0};
-    size_t within = 0;
+    size_t within_count = 0, identical_count = 0;
     for (size_t i = 0; i < test.pixel_count(); ++i) {
         const float* a = test.data().data() + i * 4;
         const float* b = ref.data().data() + i * 4;
@@ -43,24 +61,52 @@ ImageDifference compare_images(const Film& test, const Film& ref, double rel_tol
             sq += diff * diff;
             rel += diff * diff / (double(b[c]) * b[c] + 1e-2);
             d.max_abs = std::max(d.max_abs, ad);
-            ok = ok && ad <= rel_tol * std::fabs(double(b[c])) + abs_tol;
+            const double scale = std::max(std::fabs(double(a[c])), std::fabs(double(b[c])));
+            if (scale > 0) d.max_rel = std::max(d.max_rel, ad / scale);
+            ok = ok && within(a[c], b[c], tol);
             sum_test[c] += a[c];
             sum_ref[c] += b[c];
+            total_test += a[c];
+            total_ref += b[c];
         }
-        within += ok;
+        within_count += ok;
+        identical_count += std::memcmp(a, b, 3 * sizeof(float)) == 0;
         ++d.pixels;
     }
+    const double all = double(test.pixel_count());
+    d.within_tolerance = double(within_count) / all;
+    d.identical = double(identical_count) / all;
     if (d.pixels > 0) {
         const double n = 3.0 * double(d.pixels);
         d.rmse = std::sqrt(sq / n);
         d.rel_mse = rel / n;
-        d.within_tolerance = double(within) / double(d.pixels);
+        d.mean_test = total_test / n;
+        d.mean_ref = total_ref / n;
         for (int c = 0; c < 3; ++c) {
             const double bias = std::fabs(sum_test[c] - sum_ref[c]);
             if (bias > 0) d.mean_rel_diff = std::max(d.mean_rel_diff, bias / std::fabs(sum_ref[c]));
         }
     }
     return d;
+}
+
+AgreementVerdict judge_agreement(const ImageDifference& d, const AgreementLimits& limits)
+{
+    AgreementVerdict v;
+    v.finite = d.nonfinite == 0;
+    const bool test_black = d.mean_test == 0.0, ref_black = d.mean_ref == 0.0;
+    v.lit = !test_black && !ref_black;
+    v.rel_mse_ok = d.rel_mse <= limits.max_rel_mse;
+    v.within_ok = d.within_tolerance >= limits.min_within;
+    if (!v.finite) v.why = std::to_string(d.nonfinite) + " pixels with NaN/Inf";
+    else if (test_black && ref_black) v.why = "both images are black (the comparison proves nothing)";
+    else if (!v.lit) v.why = "one image is black (the comparison proves nothing)";
+    else if (!v.rel_mse_ok)
+        v.why = "rel MSE " + format("%.3g", d.rel_mse) + " > " + format("%.3g", limits.max_rel_mse);
+    else if (!v.within_ok)
+        v.why = "only " + percent(d.within_tolerance) + " of pixels within tolerance (< " +
+                percent(limits.min_within) + ")";
+    return v;
 }
 
 ZTestResult z_test(const Film& mean, uint32_t spp, const Film& ref, const Film& ref_variance, double alpha,

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <limits>
 
 #include <glm/glm.hpp>
 
@@ -106,54 +104,6 @@ IdDepthAgreement compare_ids_depth(const std::vector<std::int32_t>& ref_ids, con
     }
     r.id_agreement = r.compared > 0 ? double(r.equal_ids) / double(r.compared) : 1.0;
     r.mean_depth_rel_error = depth_count > 0 ? depth_sum / double(depth_count) : 0.0;
-    return r;
-}
-
-RadianceAgreement compare_radiance(const Film& ref, const Film& test, double tolerance)
-{
-    if (ref.width() != test.width() || ref.height() != test.height())
-        throw InputError("compare_radiance: image sizes differ (" + std::to_string(ref.width()) + "x" +
-                         std::to_string(ref.height()) + " vs " + std::to_string(test.width()) + "x" +
-                         std::to_string(test.height()) + ")");
-    RadianceAgreement r;
-    r.tolerance = tolerance;
-    const std::size_t n = ref.pixel_count();
-    if (n == 0) return r;
-    double sq_sum = 0.0;
-    double ref_sum = 0.0;
-    std::size_t within = 0;
-    std::size_t identical = 0;
-    for (std::uint32_t y = 0; y < ref.height(); ++y)
-        for (std::uint32_t x = 0; x < ref.width(); ++x) {
-            const float* a = ref.pixel(x, y);
-            const float* b = test.pixel(x, y);
-            bool ok = true;
-            bool finite = true;
-            for (int c = 0; c < 3; ++c) {
-                const double ra = a[c], tb = b[c];
-                if (!std::isfinite(ra) || !std::isfinite(tb)) {
-                    finite = false;
-                    continue;
-                }
-                ref_sum += ra;
-                const double diff = std::fabs(tb - ra);
-                sq_sum += diff * diff / (ra * ra + 0.01);
-                const double scale = std::max(std::fabs(ra), std::fabs(tb));
-                if (scale > 0.0) r.max_rel_error = std::max(r.max_rel_error, diff / scale);
-                if (!(diff <= tolerance * scale || diff <= 1e-6)) ok = false;
-            }
-            if (!finite) {
-                ++r.non_finite;
-                ok = false;
-            }
-            if (ok) ++within;
-            if (std::memcmp(a, b, 3 * sizeof(float)) == 0) ++identical;
-        }
-    r.rel_mse = sq_sum / (3.0 * double(n));
-    if (r.non_finite > 0) r.rel_mse = std::numeric_limits<double>::infinity();
-    r.within = double(within) / double(n);
-    r.identical = double(identical) / double(n);
-    r.ref_mean = ref_sum / (3.0 * double(n));
     return r;
 }
 

@@ -1,6 +1,6 @@
-// How far two renders of the same scene are apart: the figures the OpenCL/Vulkan
-// cross-check reports and judges. Pure functions of images, so they are tested on
-// hand-made inputs without any device.
+// How far the OpenCL and Vulkan first-hit images are apart (primitive ids, depth, the edge
+// rule), and the cross-check's limits; radiance is compared by host/image/compare.h. Pure
+// functions of images, so they are tested on hand-made inputs without any device.
 #pragma once
 
 #include <cstddef>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gc_types.h"
+#include "host/image/compare.h"
 #include "host/image/film.h"
 #include "host/scene/scene.h"
 
@@ -53,30 +54,11 @@ IdDepthAgreement compare_ids_depth(const std::vector<std::int32_t>& ref_ids, con
                                    const std::vector<std::int32_t>& test_ids, const std::vector<float>& test_depth,
                                    const std::vector<std::uint8_t>& exclude);
 
-struct RadianceAgreement {
-    // Mean over pixels and RGB of (test - ref)^2 / (ref^2 + 0.01): relative MSE as used in
-    // the denoising literature (Rousselle et al. 2011), the 0.01 keeping black pixels from
-    // dominating.
-    double rel_mse = 0.0;
-    // Fraction of pixels whose every channel satisfies |test - ref| <= tol * max(|test|, |ref|)
-    // or |test - ref| <= 1e-6 (an absolute floor for black and near-black pixels).
-    double within = 1.0;
-    double tolerance = 1e-3;
-    double max_rel_error = 0.0; // largest |test - ref| / max(|test|, |ref|) over channels
-    double identical = 1.0;     // fraction of pixels whose RGB are the same bits in both
-    std::size_t non_finite = 0;  // pixels with a NaN or infinity in either image (counted as outside)
-    double ref_mean = 0.0;       // mean of the reference's RGB: a black comparison proves nothing
-};
-
-// Throws InputError when the sizes differ.
-RadianceAgreement compare_radiance(const Film& ref, const Film& test, double tolerance = 1e-3);
-
 // The pass/fail limits of the cross-check (DESIGN.md "Cross-checks").
 struct Tolerances {
     double min_id_agreement = 0.995;
     double max_depth_rel_error = 1e-4;
-    double max_rel_mse = 1e-4;
-    double min_within = 0.99;
+    AgreementLimits radiance{1e-4, 0.99};  // looser than the consistency check's AgreementLimits{}
 };
 
 // Ids from a primitive-id AOV film (the red channel holds the id as a float, -1 = miss).

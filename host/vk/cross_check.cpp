@@ -60,28 +60,25 @@ std::string num(const char* format, double value)
     return buffer;
 }
 
-bool radiance_passed(const RadianceAgreement& r, const Tolerances& tol)
+std::string radiance_lines(const std::string& integrator, const ImageDifference& r, const Tolerances& tol)
 {
-    return r.rel_mse <= tol.max_rel_mse && r.within >= tol.min_within && r.ref_mean > 0.0;
-}
-
-std::string radiance_lines(const std::string& integrator, const RadianceAgreement& r, const Tolerances& tol)
-{
+    const AgreementVerdict v = judge_agreement(r, tol.radiance);
     std::string s;
-    s += line((integrator + " radiance rel MSE").c_str(), num("%.3g", r.rel_mse), r.rel_mse <= tol.max_rel_mse);
-    s += line((integrator + " radiance pixels within 1e-3 relative").c_str(), num("%.3f %%", 100.0 * r.within),
-              r.within >= tol.min_within);
+    if (!v.finite) s += line((integrator + " radiance pixels with NaN/Inf").c_str(), std::to_string(r.nonfinite), false);
+    s += line((integrator + " radiance rel MSE").c_str(), num("%.3g", r.rel_mse), v.rel_mse_ok);
+    s += line((integrator + " radiance pixels within 1e-3 relative").c_str(), num("%.3f %%", 100.0 * r.within_tolerance),
+              v.within_ok);
     s += line("  bit-identical pixels", num("%.3f %%", 100.0 * r.identical), true);
-    s += line("  max rel error", num("%.3g", r.max_rel_error), true);
-    s += line("  mean OpenCL radiance (must not be black)", num("%.4g", r.ref_mean), r.ref_mean > 0.0);
+    s += line("  max rel error", num("%.3g", r.max_rel), true);
+    s += line("  mean OpenCL radiance (must not be black)", num("%.4g", r.mean_ref), v.lit);
     return s;
 }
 
 // Renders `integrator` with both APIs at settings.spp and compares the radiance.
-RadianceAgreement compare_integrator(const cl::Context& cl_context, const RenderSetup& setup,
-                                     const std::shared_ptr<const DeviceScene>& cl_scene, const Context& vk_context, const Scene& scene, const FlatBvh& bvh,
-                                     const Camera& camera, const RenderSettings& settings,
-                                     IntegratorKind integrator, double& cl_seconds_per_spp, double& vk_seconds_per_spp)
+ImageDifference compare_integrator(const cl::Context& cl_context, const RenderSetup& setup,
+                                   const std::shared_ptr<const DeviceScene>& cl_scene, const Context& vk_context, const Scene& scene, const FlatBvh& bvh,
+                                   const Camera& camera, const RenderSettings& settings,
+                                   IntegratorKind integrator, double& cl_seconds_per_spp, double& vk_seconds_per_spp)
 {
     RenderSettings s = settings;
     s.integrator = integrator;
@@ -90,7 +87,7 @@ RadianceAgreement compare_integrator(const cl::Context& cl_context, const Render
     const Film vk_film = render_vk(vk_context, scene, bvh, camera, s, settings.spp, &vk_seconds);
     cl_seconds_per_spp = cl_seconds / settings.spp;
     vk_seconds_per_spp = vk_seconds / settings.spp;
-    return compare_radiance(cl_film, vk_film);
+    return compare_images(vk_film, cl_film, Tolerances{}.radiance.pixel);
 }
 
 }  // namespace
@@ -99,8 +96,8 @@ bool CrossCheckReport::passed(const Tolerances& tol) const
 {
     return raster.id_agreement >= tol.min_id_agreement && raster.max_depth_rel_error <= tol.max_depth_rel_error &&
            compute_aov.id_agreement >= tol.min_id_agreement &&
-           compute_aov.max_depth_rel_error <= tol.max_depth_rel_error && radiance_passed(path, tol) &&
-           radiance_passed(whitted, tol);
+           compute_aov.max_depth_rel_error <= tol.max_depth_rel_error &&
+           judge_agreement(path, tol.radiance).passed() && judge_agreement(whitted, tol.radiance).passed();
 }
 
 std::string CrossCheckReport::format(const Tolerances& tol) const

@@ -26,8 +26,8 @@ struct CrossCheckReport {
     std::uint32_t spp = 0;
     IdDepthAgreement raster;      // Vulkan raster G-buffer vs OpenCL ray-cast AOVs
     IdDepthAgreement compute_aov; // Vulkan compute AOVs vs OpenCL ray-cast AOVs
-    RadianceAgreement path;       // Vulkan path.comp vs the OpenCL path tracer
-    RadianceAgreement whitted;    // Vulkan whitted.comp vs OpenCL whitted.cl
+    ImageDifference path;         // Vulkan path.comp vs the OpenCL path tracer
+    ImageDifference whitted;      // Vulkan whitted.comp vs OpenCL whitted.cl
     double raster_seconds = 0.0;  // one raster frame (render + read back)
     double vk_path_seconds_per_spp = 0.0;
     double cl_path_seconds_per_spp = 0.0;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -27,7 +28,12 @@ TEST(Compare, IdenticalImagesAreZero)
     EXPECT_EQ(d.rmse, 0.0);
     EXPECT_EQ(d.rel_mse, 0.0);
     EXPECT_EQ(d.max_abs, 0.0);
+    EXPECT_EQ(d.max_rel, 0.0);
     EXPECT_EQ(d.within_tolerance, 1.0);
+    EXPECT_EQ(d.identical, 1.0);
+    EXPECT_EQ(d.mean_rel_diff, 0.0);
+    EXPECT_NEAR(d.mean_test, 0.3, 1e-7);
+    EXPECT_EQ(d.mean_test, d.mean_ref);
 }
 
 TEST(Compare, KnownValues)
@@ -43,7 +49,12 @@ TEST(Compare, KnownValues)
     EXPECT_NEAR(d.rmse, std::sqrt(0.25 / 12), 1e-12);
     EXPECT_NEAR(d.rel_mse, 0.25 / 1.01 / 12, 1e-12);
     EXPECT_DOUBLE_EQ(d.max_abs, 0.5);
+    EXPECT_DOUBLE_EQ(d.max_rel, 0.5 / 1.5);
     EXPECT_DOUBLE_EQ(d.within_tolerance, 0.75);
+    EXPECT_DOUBLE_EQ(d.identical, 0.75);
+    EXPECT_DOUBLE_EQ(d.mean_test, 12.5 / 12);
+    EXPECT_DOUBLE_EQ(d.mean_ref, 1.0);
+    EXPECT_DOUBLE_EQ(d.mean_rel_diff, 0.5 / 4);  // red: sums 4.5 vs 4
 }
 
 TEST(Compare, RelativeMseWeighsDarkPixelsMore)
@@ -53,13 +64,37 @@ TEST(Compare, RelativeMseWeighsDarkPixelsMore)
     EXPECT_NEAR(compare_images(solid(1, 1, 1.1f), solid(1, 1, 1.0f)).rel_mse, 0.01 / 1.01, 1e-6);
 }
 
-TEST(Compare, ToleranceIsRelativePlusAbsolute)
+TEST(Compare, ReferenceToleranceIsRelativePlusAbsolute)
 {
     // |t - r| <= 0.01 |r| + 1e-3: at r = 10, 0.1009 passes and 0.102 fails; at r = 0, 9e-4 passes.
     EXPECT_EQ(compare_images(solid(1, 1, 10.1009f), solid(1, 1, 10.0f)).within_tolerance, 1.0);
     EXPECT_EQ(compare_images(solid(1, 1, 10.102f), solid(1, 1, 10.0f)).within_tolerance, 0.0);
     EXPECT_EQ(compare_images(solid(1, 1, 9e-4f), solid(1, 1, 0.0f)).within_tolerance, 1.0);
     EXPECT_EQ(compare_images(solid(1, 1, 2e-3f), solid(1, 1, 0.0f)).within_tolerance, 0.0);
+}
+
+TEST(Compare, SymmetricToleranceIsRelativeToTheLargerValue)
+{
+    const PixelTolerance tol = AgreementLimits{}.pixel;  // 1e-3 relative, 1e-6 absolute
+    Film a(2, 1), b(2, 1);
+    // Pixel 0: off by 0.9e-3 relative to the larger value: within. Pixel 1: 1.1e-3: outside.
+    a.set(0, 0, Rgba{1.0f, 1.0f, 1.0f, 1.0f});
+    b.set(0, 0, Rgba{1.0f, 1.0f, 0.9991f, 1.0f});
+    a.set(1, 0, Rgba{1.0f, 1.0f, 1.0f, 1.0f});
+    b.set(1, 0, Rgba{1.0f, 0.9989f, 1.0f, 1.0f});
+    EXPECT_EQ(compare_images(a, b, tol).within_tolerance, 0.5);
+    EXPECT_EQ(compare_images(b, a, tol).within_tolerance, 0.5);
+}
+
+TEST(Compare, SymmetricToleranceHasAnAbsoluteFloorForBlack)
+{
+    const PixelTolerance tol = AgreementLimits{}.pixel;
+    Film test = solid(2, 2, 0.0f);
+    test.set(0, 0, Rgba{5e-7f, 0.0f, 0.0f, 1.0f});  // below the 1e-6 floor
+    test.set(1, 0, Rgba{2e-6f, 0.0f, 0.0f, 1.0f});  // above it
+    const ImageDifference d = compare_images(test, solid(2, 2, 0.0f), tol);
+    EXPECT_EQ(d.within_tolerance, 0.75);
+    EXPECT_EQ(d.identical, 0.5);  // within is not the same bits
 }
 
 TEST(Compare, NonFinitePixelsAreCountedNotAveraged)
@@ -70,6 +105,97 @@ TEST(Compare, NonFinitePixelsAreCountedNotAveraged)
     EXPECT_EQ(d.nonfinite, 1u);
     EXPECT_EQ(d.pixels, 1u);
     EXPECT_EQ(d.rmse, 0.0);
+    EXPECT_EQ(d.rel_mse, 0.0);
+    EXPECT_EQ(d.mean_test, 1.0);
+    // ... but a NaN pixel is neither within tolerance nor identical.
+    EXPECT_EQ(d.within_tolerance, 0.5);
+    EXPECT_EQ(d.identical, 0.5);
+}
+
+// A smooth, non-black image.
+Film gradient(uint32_t w, uint32_t h)
+{
+    Film f(w, h);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            f.set(x, y, Rgba{0.1f + 0.8f * float(x) / float(w), 0.5f, 0.2f + 0.3f * float(y) / float(h), 1.0f});
+    return f;
+}
+
+AgreementVerdict judge(const Film& test, const Film& ref, const AgreementLimits& limits = {})
+{
+    return judge_agreement(compare_images(test, ref, limits.pixel), limits);
+}
+
+TEST(Agreement, IdenticalImagesPass)
+{
+    const AgreementVerdict v = judge(gradient(32, 32), gradient(32, 32));
+    EXPECT_TRUE(v.passed()) << v.why;
+    EXPECT_TRUE(v.finite && v.lit && v.rel_mse_ok && v.within_ok);
+}
+
+// One decorrelated path in a 64-spp pixel: the pixel moves by sample / 64, far outside 1e-3
+// relative, but the image's relative MSE stays small. The two limits judge the two effects.
+TEST(Agreement, RareOutlierPixelsAreJudgedByFractionAndRelMse)
+{
+    const Film a = gradient(100, 100);
+    Film b = a;
+    Rgba c = b.at(7, 7);
+    c.g += 1.0f / 64.0f;
+    b.set(7, 7, c);
+    const ImageDifference one = compare_images(b, a, AgreementLimits{}.pixel);
+    std::printf("one outlier of 10000: within %.4f%% rel_mse %.3g max_abs %.3g\n", 100 * one.within_tolerance,
+                one.rel_mse, one.max_abs);
+    EXPECT_DOUBLE_EQ(one.within_tolerance, 0.9999);
+    EXPECT_LT(one.rel_mse, 1e-5);
+    EXPECT_TRUE(judge_agreement(one, {}).passed()) << judge_agreement(one, {}).why;
+
+    // 20 such pixels more (0.2 %): the fraction limit (99.9 %) fails.
+    for (uint32_t i = 0; i < 20; ++i) {
+        Rgba d = b.at(i, 50);
+        d.r += 1.0f / 64.0f;
+        b.set(i, 50, d);
+    }
+    const AgreementVerdict many = judge(b, a);
+    std::printf("21 outliers -> %s\n", many.why.c_str());
+    EXPECT_FALSE(many.within_ok);
+    EXPECT_EQ(many.why, "only 99.790 % of pixels within tolerance (< 99.900 %)");
+}
+
+TEST(Agreement, LargeRelMseFails)
+{
+    const Film a = gradient(16, 16);
+    Film b = a;
+    for (float& v : b.data()) v *= 1.01f;  // 1 % everywhere: rel MSE about 2e-5 .. 1e-4
+    const AgreementVerdict v = judge(b, a, AgreementLimits{1e-5, 0.0});
+    std::printf("1%% brighter -> %s\n", v.why.c_str());
+    EXPECT_FALSE(v.rel_mse_ok);
+    EXPECT_EQ(v.why.rfind("rel MSE ", 0), 0u);
+    EXPECT_NE(v.why.find(" > 1e-05"), std::string::npos);
+}
+
+TEST(Agreement, BlackImagesProveNothing)
+{
+    const Film black(8, 8);
+    const AgreementVerdict both = judge(black, black);
+    EXPECT_FALSE(both.lit);
+    EXPECT_EQ(both.why, "both images are black (the comparison proves nothing)");
+    // One black image fails too, even where the other is too dark to leave the tolerance.
+    const AgreementVerdict one = judge(solid(8, 8, 5e-7f), black);
+    EXPECT_TRUE(one.within_ok);
+    EXPECT_FALSE(one.passed());
+    EXPECT_EQ(one.why, "one image is black (the comparison proves nothing)");
+}
+
+TEST(Agreement, NonFinitePixelsFailFirst)
+{
+    const Film a = gradient(8, 8);
+    Film b = a;
+    b.set(3, 3, Rgba{std::numeric_limits<float>::quiet_NaN(), 0, 0, 1});
+    const AgreementVerdict v = judge(b, a);
+    EXPECT_FALSE(v.finite);
+    EXPECT_TRUE(v.rel_mse_ok);  // over the other pixels, which agree
+    EXPECT_EQ(v.why, "1 pixels with NaN/Inf");
 }
 
 TEST(Compare, SizeMismatchIsInputError)

@@ -37,7 +37,8 @@ constexpr const char* k_usage =
 struct Options {
     std::string test, ref, heatmap, variance;
     std::optional<double> rel_mse_max, rmse_max, max_abs_max, within_min, mean_rel_max;
-    double tol = 0.01, alpha = 0.01, z_pass_min = 0.9975;
+    gc::PixelTolerance tol;  // the reference rule: --tol sets its relative part
+    double alpha = 0.01, z_pass_min = 0.9975;
     float heatmap_scale = 0;
     uint32_t spp = 0;
 };
@@ -71,7 +72,7 @@ Options parse(int argc, char** argv)
         else if (a == "--max-abs-max") o.max_abs_max = parse_number(a, v);
         else if (a == "--within-min") o.within_min = parse_number(a, v);
         else if (a == "--mean-rel-max") o.mean_rel_max = parse_number(a, v);
-        else if (a == "--tol") o.tol = parse_number(a, v);
+        else if (a == "--tol") o.tol.rel = parse_number(a, v);
         else if (a == "--heatmap") o.heatmap = v;
         else if (a == "--heatmap-scale") o.heatmap_scale = float(parse_number(a, v));
         else if (a == "--variance") o.variance = v;
@@ -107,7 +108,7 @@ int run(int argc, char** argv)
     std::printf("  rmse               %.6g\n", d.rmse);
     std::printf("  rel_mse            %.6g\n", d.rel_mse);
     std::printf("  max_abs            %.6g\n", d.max_abs);
-    std::printf("  within_tolerance   %.6f  (|t-r| <= %g*|r| + 1e-3)\n", d.within_tolerance, o.tol);
+    std::printf("  within_tolerance   %.6f  (|t-r| <= %g*|r| + 1e-3)\n", d.within_tolerance, o.tol.rel);
     std::printf("  nonfinite_pixels   %zu\n", d.nonfinite);
     std::printf("  mean_rel_diff      %.6g  (largest over RGB of |mean(t) - mean(r)| / mean(r))\n", d.mean_rel_diff);
 
