@@ -5,7 +5,7 @@
  * directly; the Vulkan compute reference (kernels/vk/aov.comp) and the raster pass
  * (kernels/vk/raster.frag, preview) do.
  *
- * Needs the scene-buffer macros of gc_path_vertex.h (GC_SHADE_PARAMS, ...).
+ * Reads the scene through the shade group of gc_scene_buffers.h (GC_SHADE_PARAMS).
  */
 #ifndef GC_AOV_H
 #define GC_AOV_H

@@ -18,14 +18,10 @@
  * d < max_depth. A path starts with throughput (1, 1, 1, 0), radiance (0, 0, 0, 1), depth 0 and
  * GC_PATH_SPECULAR (a camera ray sees emitters with full weight).
  *
- * Scene buffers come in through macros, as in gc_traverse.h. Defaults (OpenCL C and C++):
- *     GC_SHADE_PARAMS  attribs, materials, textures pointers, then GC_TEXELS_PARAM, GC_EMITTERS_PARAM
- *     GC_SHADE_ARGS    attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG
- *     GC_ATTRIB(i), GC_MATERIAL(i), GC_TEXTURE(i)
- *     GC_SHADE_UNUSED()  a statement marking all of them used (empty in GLSL)
- *     GC_SCENE_PARAMS  the BVH (gc_alpha.h's GC_BVH_PARAMS), then the rest of GC_SHADE_PARAMS
- * GLSL declares SSBOs and defines all of them (and those of gc_texture.h / gc_path.h) first;
- * see kernels/vk/scene_bindings.glsl.
+ * Scene buffers come in as the scene-buffer group shade (gc_scene_buffers.h): GC_SHADE_PARAMS
+ * / GC_SHADE_ARGS, read through GC_ATTRIB(i), GC_MATERIAL(i), GC_TEXTURE(i) and the texel,
+ * emitter and light accessors; GC_SHADE_UNUSED() marks them all used in helpers that read
+ * only some. The Vulkan reference reads its SSBOs instead (kernels/vk/scene_bindings.glsl).
  */
 #ifndef GC_PATH_VERTEX_H
 #define GC_PATH_VERTEX_H
@@ -36,33 +32,10 @@
 #include "gc_path.h"
 #include "gc_spawn.h"
 #include "gc_rng.h"
+#include "gc_scene_buffers.h"
 #include "gc_shading.h"
 #include "gc_tangent.h"
 #include "gc_texture.h"
-
-#ifndef GC_SHADE_PARAMS
-#define GC_SHADE_PARAMS                                                                           \
-    GC_GLOBAL const GcTriangleAttribs *attribs, GC_GLOBAL const GcMaterial *materials,            \
-        GC_GLOBAL const GcTexture *textures, GC_TEXELS_PARAM, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
-#define GC_SHADE_ARGS attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
-#define GC_ATTRIB(i) attribs[i]
-#define GC_MATERIAL(i) materials[i]
-#define GC_TEXTURE(i) textures[i]
-/* For functions that read only some of the buffers (C++ warns about unused parameters). */
-#define GC_SHADE_UNUSED() \
-    ((void)attribs, (void)materials, (void)textures, (void)GC_TEXELS_ARG, (void)GC_EMITTERS_ARG, GC_LIGHTS_UNUSED())
-/* Every scene buffer, for kernels that both trace and shade (megakernel.cl, aov.cl). The BVH
- * parameters that gc_alpha.h widens already end with the four buffers GC_SHADE_PARAMS starts
- * with, so the group is those plus the emitters and lights, written once here instead of in
- * each kernel; the body passes GC_BVH_ARGS to the traversal and GC_SHADE_ARGS to the shading.
- * Include gc_alpha.h first (otherwise attribs..texels are missing and the kernel fails to
- * compile). The host's twin is DeviceScene::scene_args(), which sets them in this order. */
-#define GC_SCENE_PARAMS GC_BVH_PARAMS, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
-#define GC_SCENE_ARGS GC_BVH_ARGS, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
-#endif
-#ifndef GC_SHADE_UNUSED
-#define GC_SHADE_UNUSED()
-#endif
 
 /* GcVertexResult.flags */
 #define GC_VERTEX_CONTINUE 1u /* `next` is the path's next ray */
@@ -174,14 +147,10 @@ GC_FUNC float4 gc_with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, 
 GC_FUNC float3 gc_escaped_radiance(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, float3 d)
 {
     GC_SHADE_UNUSED();
-#if GC_HAS_LIGHT_BUFFERS
     const float3 Le = gc_env_radiance(GC_LIGHTS_ARGS, params, d);
     if (!gc_has_env_map(params) || (path.flags & GC_PATH_SPECULAR) != 0u) return Le;
     const float pdf_light = gc_light_group_pmf(params) * gc_env_pdf_w(GC_LIGHTS_ARGS, params, d);
     return Le * gc_power_heuristic(path.throughput.w, pdf_light);
-#else
-    return GC_XYZ(params.env_radiance);
-#endif
 }
 
 /* Next-event estimation's light sample from the shading point p: r.x picks a light group
@@ -228,7 +197,6 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         ls.kind = GC_LIGHT_AREA;
         return ls;
     }
-#if GC_HAS_LIGHT_BUFFERS
     /* The constants drop each group's code from programs built for scenes without it. */
     if (GC_POINT_LIGHT_CODE != 0 && group == 1u) {
         uint i = gc_uint(u * gc_float(params.num_point_lights));
@@ -267,7 +235,6 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         ls.dist = GC_FLOAT_MAX;
         ls.kind = GC_LIGHT_ENV;
     }
-#endif
     return ls;
 }
 
