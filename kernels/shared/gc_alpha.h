@@ -10,7 +10,7 @@
  * alphaMode BLEND is not tested here: it is stochastic transparency and would need a random
  * number per candidate triangle, keyed by the path (pixel, sample, bounce) that the traversal
  * kernels do not carry, and the closest-hit/brute-force equality would then depend on that
- * key. It stays a shading-level pass-through (gc_path_vertex.h).
+ * key. It stays a shading-level pass-through (gc_alpha_transparent, gc_material_eval.h).
  *
  * The buffers it reads (triangle attributes, materials, textures, texels) come in as the
  * scene-buffer group alpha, GC_ALPHA_PARAMS / GC_ALPHA_ARGS (gc_scene_buffers.h).

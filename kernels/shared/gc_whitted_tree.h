@@ -47,8 +47,12 @@
 
 #include "gc_traverse.h"
 #include "gc_camera.h"
-#include "gc_path_vertex.h"
+#include "gc_lights.h"
+#include "gc_material_eval.h"
+#include "gc_path.h"
 #include "gc_rng.h"
+#include "gc_shading.h"
+#include "gc_spawn.h"
 #include "gc_whitted.h"
 
 #define GC_WHITTED_STACK 16u
