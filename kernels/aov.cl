@@ -6,7 +6,6 @@
  * owns its film slot, so the sum needs no atomics.
  */
 #include "gc_aov.h"
-#include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as the path kernels */
 #include "gc_traverse.h"
 
 __kernel void aov_render(const GcRenderParams params, GC_SCENE_PARAMS, __global float4* film)

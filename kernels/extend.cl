@@ -1,5 +1,4 @@
 /* extend.cl — closest hit for every queued ray, alpha-MASK cut-outs skipped (gc_alpha.h). */
-#include "gc_alpha.h"
 #include "gc_traverse.h"
 
 __kernel void extend(const GcRenderParams params,

@@ -32,7 +32,6 @@
  * the path, the film update each a function) ran one sample per pass at 0.87-0.93x of the
  * loop before the packets on the 2-core VM; this form runs it at 0.95-1.00x (4 rounds).
  */
-#include "gc_alpha.h"
 #include "gc_traverse.h"
 #include "gc_packet8.h"
 #include "gc_path_vertex.h"

@@ -2,7 +2,6 @@
  * their contribution to their path. At most one shadow ray per path is in flight, so the
  * read-modify-write of the path's radiance is race-free. Alpha-MASK cut-outs let the ray
  * through (gc_alpha.h). */
-#include "gc_alpha.h"
 #include "gc_traverse.h"
 
 __kernel void shadow(const GcRenderParams params,

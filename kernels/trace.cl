@@ -1,8 +1,10 @@
 /*
  * trace.cl — traversal as a service: closest or any hit for a buffer of rays. Used by the
  * device-vs-host traversal tests and by geocold-bench's ray-throughput figures; the
- * integrators call the same gc_trace_* functions inline.
+ * integrators call the same gc_trace_* functions inline. Every triangle is opaque here (no
+ * alpha-MASK test), so the kernels take the BVH's two buffers only.
  */
+#define GC_TRACE_OPAQUE 1
 #include "gc_traverse.h"
 
 __kernel void trace_closest(__global const GcTraversalNode* nodes,

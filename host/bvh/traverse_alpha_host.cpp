@@ -1,6 +1,6 @@
-// The host reference with the alpha-MASK test: gc_traverse.h compiled with gc_alpha.h's hook
-// (as extend.cl and shadow.cl are), and the brute force that checks it. A translation unit of
-// its own because the hook is chosen by macros before gc_traverse.h is included; the
+// The host reference with the alpha-MASK test: gc_traverse.h as extend.cl and shadow.cl
+// compile it (gc_alpha.h's hook), and the brute force that checks it. A translation unit of
+// its own because the plain reference defines GC_TRACE_OPAQUE for the whole unit; the
 // overloads differ in their parameters, so the two instantiations do not collide.
 #include "gc_alpha.h"
 #include "gc_traverse.h"

@@ -1,3 +1,5 @@
+// The plain reference: every triangle opaque, the BVH's buffers only (gc_traverse.h).
+#define GC_TRACE_OPAQUE 1
 #include "host/bvh/traverse_host.h"
 
 #include "gc_traverse.h"

@@ -1,7 +1,6 @@
 // The BVH8 host reference with the alpha-MASK hook (see traverse_wide8_host.cpp).
 #define GC_BVH_WIDE 1
 #define GC_BVH_WIDE8 1
-#include "gc_alpha.h"
 #include "gc_traverse.h"
 #include "host/bvh/traverse_host.h"
 #include "host/math/to_device.h"

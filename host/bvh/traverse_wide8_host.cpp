@@ -2,6 +2,7 @@
 // for the BVH4: a translation unit of its own because the layout is chosen by macros.
 #define GC_BVH_WIDE 1
 #define GC_BVH_WIDE8 1
+#define GC_TRACE_OPAQUE 1
 #include "gc_traverse.h"
 #include "host/bvh/traverse_host.h"
 #include "host/math/to_device.h"

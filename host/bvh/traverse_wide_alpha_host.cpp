@@ -1,7 +1,6 @@
 // The BVH4 host reference with the alpha-MASK hook (see traverse_alpha_host.cpp and
 // traverse_wide_host.cpp for why each variant is a translation unit of its own).
 #define GC_BVH_WIDE 1
-#include "gc_alpha.h"
 #include "gc_traverse.h"
 #include "host/bvh/traverse_host.h"
 #include "host/math/to_device.h"

@@ -3,6 +3,7 @@
 // chosen by a macro before the shared headers are included; the overloads differ in their
 // parameter types (GcBvh4Node, GcTriangle4), so they do not collide with the BVH2 ones.
 #define GC_BVH_WIDE 1
+#define GC_TRACE_OPAQUE 1
 #include "gc_traverse.h"
 #include "host/bvh/traverse_host.h"
 #include "host/math/to_device.h"

@@ -15,6 +15,7 @@
 #include "host/render/device_tuning.h"
 #include "host/render/environment.h"
 #include "host/render/kernel_features.h"
+#include "host/render/scene_buffers.h"
 #include "host/render/scene_convert.h"
 #include "host/scene/scene.h"
 
@@ -53,24 +54,16 @@ struct DeviceScene {
     std::uint64_t bytes() const;
 
     // Kernel argument groups for cl::Kernel::set_args, each the twin of one parameter macro of
-    // kernels/shared and in its order, so a kernel's scene buffers are listed once per side.
-    // The tuples refer to this scene's buffers: pass them to set_args, do not keep them.
-    auto alpha_args() const { return std::tie(attribs, materials, textures, texels); }  // GC_ALPHA_PARAMS
-    auto lights_args() const  // GC_LIGHTS_PARAMS
-    {
-        return std::tie(point_lights, env_pixels, env_marginal, env_conditional);
-    }
-    auto bvh_args() const  // GC_BVH_PARAMS as gc_alpha.h widens it (extend, shadow)
-    {
-        return std::tuple_cat(std::make_tuple(bvh.nodes(), bvh.triangles()), alpha_args());
-    }
-    auto shade_args() const  // GC_SHADE_PARAMS (shade)
-    {
-        return std::tuple_cat(alpha_args(), std::tie(emitters), lights_args());
-    }
+    // kernels/shared, generated from the same list (gc_scene_buffers.h), so they agree in order
+    // and number. The tuples refer to this scene's buffers: pass them to set_args, do not keep
+    // them.
+    auto alpha_args() const { return GC_DEVICE_SCENE_ARGS(ALPHA); }    // GC_ALPHA_PARAMS
+    auto lights_args() const { return GC_DEVICE_SCENE_ARGS(LIGHTS); }  // GC_LIGHTS_PARAMS
+    auto bvh_args() const { return GC_DEVICE_SCENE_ARGS(TRACE); }      // GC_BVH_PARAMS (extend, shadow)
+    auto shade_args() const { return GC_DEVICE_SCENE_ARGS(SHADE); }    // GC_SHADE_PARAMS (shade)
     auto scene_args() const  // GC_SCENE_PARAMS (path_megakernel, aov_render, whitted_render)
     {
-        return std::tuple_cat(bvh_args(), std::tie(emitters), lights_args());
+        return GC_DEVICE_SCENE_ARGS(SCENE);
     }
 
     // Replaces the materials, and the emitters they make (an emission edit changes which

@@ -5,13 +5,15 @@
  * directly; the Vulkan compute reference (kernels/vk/aov.comp) and the raster pass
  * (kernels/vk/raster.frag, preview) do.
  *
- * Needs the scene-buffer macros of gc_path_vertex.h (GC_SHADE_PARAMS, ...).
+ * Reads the scene through the shade group of gc_scene_buffers.h (GC_SHADE_PARAMS).
  */
 #ifndef GC_AOV_H
 #define GC_AOV_H
 
 #include "gc_camera.h"
-#include "gc_path_vertex.h"
+#include "gc_material_eval.h"
+#include "gc_rng.h"
+#include "gc_shading.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -26,18 +28,6 @@ GC_FUNC GcRay gc_aov_camera_ray(GcRenderParams params, uint pixel)
     }
     return gc_camera_ray(params.camera, params.width, params.height, pixel % params.width, pixel / params.width,
                          jitter.x, jitter.y);
-}
-
-/* Emitted radiance at uv: the material's emission times its emission texture, if any.
- * (The path tracer does not read emission textures yet; the preview needs them, or a
- * glTF model with emissiveFactor 1 and a mostly black emissive map shows as a white blob.) */
-GC_FUNC float3 gc_aov_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
-{
-    GC_SHADE_UNUSED();
-    float3 emission = GC_XYZ(m.emission);
-    if (GC_USE_TEXTURES != 0 && m.emission_texture != GC_INVALID)
-        emission *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.emission_texture), uv.x, uv.y));
-    return emission;
 }
 
 /* Albedo under a headlight, plus emitters shown at (clamped) full brightness.
@@ -67,7 +57,7 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
         return make_float3(id, id, id);
     }
     return gc_aov_preview(gc_shade_albedo(GC_SHADE_ARGS, m, s.uv), s.ns, GC_XYZ(ray.dir_tmax),
-                          gc_aov_emission(GC_SHADE_ARGS, m, s.uv));
+                          gc_shade_emission(GC_SHADE_ARGS, m, s.uv));
 }
 
 GC_NAMESPACE_END

@@ -10,48 +10,27 @@
  * -Z, u increases toward +X), v = theta / pi from the zenith. Texel lookups are nearest, so
  * the radiance and the sampling density are constant over the same texels.
  *
- * Buffers come through macros, as in gc_traverse.h (defaults for OpenCL C and C++; the
- * Vulkan reference defines them over its SSBOs in kernels/vk/scene_bindings.glsl):
- *     GC_LIGHTS_PARAMS   point lights, env pixels (float4), env marginal cdf, env conditional cdf
- *     GC_LIGHTS_ARGS / GC_POINT_LIGHT(i) / GC_ENV_PIXEL(i) / GC_ENV_MARGINAL(i) / GC_ENV_CONDITIONAL(i)
- * A GLSL includer that defines no GC_LIGHTS_PARAMS gets GC_HAS_LIGHT_BUFFERS 0: no point-light
- * or environment-map code, those groups treated as absent.
+ * Buffers come in as the scene-buffer group lights (gc_scene_buffers.h): GC_LIGHTS_PARAMS /
+ * GC_LIGHTS_ARGS, read through GC_POINT_LIGHT(i), GC_ENV_PIXEL(i), GC_ENV_MARGINAL(i) and
+ * GC_ENV_CONDITIONAL(i) (the Vulkan reference defines those over its SSBOs in
+ * kernels/vk/scene_bindings.glsl).
  */
 #ifndef GC_LIGHTS_H
 #define GC_LIGHTS_H
 
 #include "gc_path.h"
+#include "gc_scene_buffers.h"
 #include "gc_trig.h"
 
-#ifndef GC_LIGHTS_PARAMS
-#if defined(GC_GLSL)
-#define GC_HAS_LIGHT_BUFFERS 0
-#else
-#define GC_HAS_LIGHT_BUFFERS 1
-#define GC_LIGHTS_PARAMS                                                                       \
-    GC_GLOBAL const GcPointLight *point_lights, GC_GLOBAL const float4 *env_pixels,             \
-        GC_GLOBAL const float *env_marginal, GC_GLOBAL const float *env_conditional
-#define GC_LIGHTS_ARGS point_lights, env_pixels, env_marginal, env_conditional
-#define GC_LIGHTS_UNUSED() ((void)point_lights, (void)env_pixels, (void)env_marginal, (void)env_conditional)
-#define GC_POINT_LIGHT(i) point_lights[i]
-#define GC_ENV_PIXEL(i) env_pixels[i]
-#define GC_ENV_MARGINAL(i) env_marginal[i]
-#define GC_ENV_CONDITIONAL(i) env_conditional[i]
-#endif
-#endif
-#ifndef GC_HAS_LIGHT_BUFFERS
-#define GC_HAS_LIGHT_BUFFERS 1
-#endif
-
-/* Whether this program can meet each light group at all: it has the buffers and was built
- * for a scene with such lights (gc_features.h). One constant each, so that clang's warning
- * about a constant right-hand operand of && stays quiet. */
-#if GC_HAS_LIGHT_BUFFERS && GC_USE_ENV_MAP
+/* Whether this program can meet each light group at all: it was built for a scene with such
+ * lights (gc_features.h). One constant each, so that clang's warning about a constant
+ * right-hand operand of && stays quiet. */
+#if GC_USE_ENV_MAP
 #define GC_ENV_MAP_CODE 1
 #else
 #define GC_ENV_MAP_CODE 0
 #endif
-#if GC_HAS_LIGHT_BUFFERS && GC_USE_POINT_LIGHTS
+#if GC_USE_POINT_LIGHTS
 #define GC_POINT_LIGHT_CODE 1
 #else
 #define GC_POINT_LIGHT_CODE 0
@@ -90,8 +69,6 @@ GC_FUNC float3 gc_env_direction(float u, float v)
 
 GC_FUNC uint gc_env_texel_x(GcRenderParams p, float u) { return gc_uint(fmin(fmax(u, 0.0f) * gc_float(p.env_width), gc_float(p.env_width - 1u))); }
 GC_FUNC uint gc_env_texel_y(GcRenderParams p, float v) { return gc_uint(fmin(fmax(v, 0.0f) * gc_float(p.env_height), gc_float(p.env_height - 1u))); }
-
-#if GC_HAS_LIGHT_BUFFERS
 
 /* First index i in [0, n) with u < cdf[base + i + 1] (cdf[base] = 0, cdf[base + n] = 1). */
 GC_FUNC uint gc_env_search(GC_LIGHTS_PARAMS, bool marginal, uint base, uint n, float u)
@@ -133,8 +110,6 @@ GC_FUNC float3 gc_env_radiance(GC_LIGHTS_PARAMS, GcRenderParams p, float3 d)
     const uint index = gc_env_texel_y(p, uv.y) * p.env_width + gc_env_texel_x(p, uv.x);
     return GC_XYZ(GC_ENV_PIXEL(index)) * GC_XYZ(p.env_radiance);
 }
-
-#endif /* GC_HAS_LIGHT_BUFFERS */
 
 /* A sampled light point as seen from the shading point. */
 GC_STRUCT(GcLightSample) {

@@ -8,12 +8,7 @@
 
 #include "gc_accessors.h"
 #include "gc_sampling.h"
-
-#ifndef GC_EMITTERS_PARAM
-#define GC_EMITTERS_PARAM GC_GLOBAL const GcEmitter* emitters
-#define GC_EMITTERS_ARG emitters
-#define GC_EMITTER(i) emitters[i]
-#endif
+#include "gc_scene_buffers.h"
 
 GC_NAMESPACE_BEGIN
 

@@ -6,10 +6,11 @@
  * gc_shade_vertex, so the two make the same sampling decisions from the same random numbers
  * by construction, not by keeping two copies in sync.
  *
- * Materials are evaluated here, not in gc_bsdf.h: base colour and alpha, metallicRoughness,
- * normal and emissive textures at the hit's uv (gc_shade_base_color, gc_shade_material,
- * gc_shade_normal, gc_shade_emission), and glTF alpha BLEND as a pass-through (see
- * gc_shade_vertex). alpha MASK never reaches this code: the traversal drops cut-away hits
+ * The pieces it strings together in the integrator's order live beside it: the material at
+ * the hit, textures folded in, and the glTF alpha BLEND decision (gc_material_eval.h); the
+ * light sample for next-event estimation and the radiance of an escaped path
+ * (gc_light_sample.h); the BSDF (gc_bsdf.h). BLEND is applied here as a pass-through (see
+ * gc_shade_vertex); alpha MASK never reaches this code: the traversal drops cut-away hits
  * (gc_alpha.h), so a MASK hit that is shaded is solid.
  *
  * Depth follows Mitsuba's convention: path.depth counts the segments traced so far, so the
@@ -18,51 +19,23 @@
  * d < max_depth. A path starts with throughput (1, 1, 1, 0), radiance (0, 0, 0, 1), depth 0 and
  * GC_PATH_SPECULAR (a camera ray sees emitters with full weight).
  *
- * Scene buffers come in through macros, as in gc_traverse.h. Defaults (OpenCL C and C++):
- *     GC_SHADE_PARAMS  attribs, materials, textures pointers, then GC_TEXELS_PARAM, GC_EMITTERS_PARAM
- *     GC_SHADE_ARGS    attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG
- *     GC_ATTRIB(i), GC_MATERIAL(i), GC_TEXTURE(i)
- *     GC_SHADE_UNUSED()  a statement marking all of them used (empty in GLSL)
- *     GC_SCENE_PARAMS  the BVH (gc_alpha.h's GC_BVH_PARAMS), then the rest of GC_SHADE_PARAMS
- * GLSL declares SSBOs and defines all of them (and those of gc_texture.h / gc_path.h) first;
- * see kernels/vk/scene_bindings.glsl.
+ * Scene buffers come in as the scene-buffer group shade (gc_scene_buffers.h): GC_SHADE_PARAMS
+ * / GC_SHADE_ARGS, read through GC_ATTRIB(i), GC_MATERIAL(i), GC_TEXTURE(i) and the texel,
+ * emitter and light accessors; GC_SHADE_UNUSED() marks them all used in helpers that read
+ * only some. The Vulkan reference reads its SSBOs instead (kernels/vk/scene_bindings.glsl).
  */
 #ifndef GC_PATH_VERTEX_H
 #define GC_PATH_VERTEX_H
 
 #include "gc_bsdf.h"
 #include "gc_frame.h"
-#include "gc_lights.h"
+#include "gc_light_sample.h"
+#include "gc_material_eval.h"
 #include "gc_path.h"
-#include "gc_spawn.h"
 #include "gc_rng.h"
+#include "gc_scene_buffers.h"
 #include "gc_shading.h"
-#include "gc_tangent.h"
-#include "gc_texture.h"
-
-#ifndef GC_SHADE_PARAMS
-#define GC_SHADE_PARAMS                                                                           \
-    GC_GLOBAL const GcTriangleAttribs *attribs, GC_GLOBAL const GcMaterial *materials,            \
-        GC_GLOBAL const GcTexture *textures, GC_TEXELS_PARAM, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
-#define GC_SHADE_ARGS attribs, materials, textures, GC_TEXELS_ARG, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
-#define GC_ATTRIB(i) attribs[i]
-#define GC_MATERIAL(i) materials[i]
-#define GC_TEXTURE(i) textures[i]
-/* For functions that read only some of the buffers (C++ warns about unused parameters). */
-#define GC_SHADE_UNUSED() \
-    ((void)attribs, (void)materials, (void)textures, (void)GC_TEXELS_ARG, (void)GC_EMITTERS_ARG, GC_LIGHTS_UNUSED())
-/* Every scene buffer, for kernels that both trace and shade (megakernel.cl, aov.cl). The BVH
- * parameters that gc_alpha.h widens already end with the four buffers GC_SHADE_PARAMS starts
- * with, so the group is those plus the emitters and lights, written once here instead of in
- * each kernel; the body passes GC_BVH_ARGS to the traversal and GC_SHADE_ARGS to the shading.
- * Include gc_alpha.h first (otherwise attribs..texels are missing and the kernel fails to
- * compile). The host's twin is DeviceScene::scene_args(), which sets them in this order. */
-#define GC_SCENE_PARAMS GC_BVH_PARAMS, GC_EMITTERS_PARAM, GC_LIGHTS_PARAMS
-#define GC_SCENE_ARGS GC_BVH_ARGS, GC_EMITTERS_ARG, GC_LIGHTS_ARGS
-#endif
-#ifndef GC_SHADE_UNUSED
-#define GC_SHADE_UNUSED()
-#endif
+#include "gc_spawn.h"
 
 /* GcVertexResult.flags */
 #define GC_VERTEX_CONTINUE 1u /* `next` is the path's next ray */
@@ -78,198 +51,8 @@ GC_STRUCT(GcVertexResult) {
     uint flags;         /* GC_VERTEX_* */
 } GC_STRUCT_END(GcVertexResult)
 
-/* Diffuse reflectance at uv: the material's albedo times its texture, if any. */
-GC_FUNC float3 gc_shade_albedo(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
-{
-    GC_SHADE_UNUSED();
-    float3 albedo = GC_XYZ(m.albedo);
-    if (GC_USE_TEXTURES != 0 && m.albedo_texture != GC_INVALID)
-        albedo *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.albedo_texture), uv.x, uv.y));
-    return albedo;
-}
-
-/* glTF base colour and alpha at uv: baseColorFactor times the (sRGB-decoded) texture. */
-GC_FUNC float4 gc_shade_base_color(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
-{
-    GC_SHADE_UNUSED();
-    float4 c = m.albedo;
-    if (GC_USE_TEXTURES != 0 && m.albedo_texture != GC_INVALID)
-        c *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.albedo_texture), uv.x, uv.y);
-    return c;
-}
-
-/* Emitted radiance at uv: emissiveFactor (times KHR_materials_emissive_strength) times the
- * sRGB emissive texture. Light selection and MIS densities use the untextured factor (it is
- * what the host's emitter power sums), so only the radiance is textured: still unbiased. */
-GC_FUNC float3 gc_shade_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
-{
-    GC_SHADE_UNUSED();
-    float3 e = GC_XYZ(m.emission);
-    if (GC_USE_TEXTURES != 0 && m.emission_texture != GC_INVALID)
-        e *= GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.emission_texture), uv.x, uv.y));
-    return e;
-}
-
-/* The material with its metallicRoughness texture folded into the factors (glTF: B = metal,
- * G = roughness, linear), so gc_bsdf.h sees plain numbers. */
-GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
-{
-    GC_SHADE_UNUSED();
-    if (GC_USE_TEXTURES != 0 && m.metallic_roughness_texture != GC_INVALID) {
-        const float4 mr = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.metallic_roughness_texture), uv.x, uv.y);
-        m.pbr.x *= mr.z;
-        m.pbr.y *= mr.y;
-    }
-    return m;
-}
-
-/* Shading normal with the material's tangent-space normal map applied, at barycentrics
- * bary = (u, v) of v1 and v2. The tangent is the file's per-vertex one interpolated, else the
- * host's per-triangle one (gc_triangle_tangent); it is re-orthogonalised against the
- * interpolated normal ns here (Gram-Schmidt), B = w * cross(ns, T). A perturbed normal that
- * would face away from ns's side (a texel at the grazing limit) keeps ns. */
-GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns, float2 uv)
-{
-    GC_SHADE_UNUSED();
-    if (GC_USE_NORMAL_MAPS == 0 || m.normal_texture == GC_INVALID) return ns;
-    const float4 tangent = gc_triangle_tangent(a, bary.x, bary.y);
-    const float3 t_tri = GC_XYZ(tangent);
-    const float3 t_raw = t_tri - ns * gc_dot(ns, t_tri);
-    const float t_len = gc_length(t_raw);
-    if (!(t_len > 1.0e-6f)) return ns;
-    const float3 t = t_raw * (1.0f / t_len);
-    const float3 b = gc_cross(ns, t) * tangent.w;
-    const float4 tex = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.normal_texture), uv.x, uv.y);
-    /* glTF normalTexture.scale multiplies x and y only (then the result is renormalised). */
-    const float xy_scale = m.normal_scale;
-    const float3 n = t * ((2.0f * tex.x - 1.0f) * xy_scale) + b * ((2.0f * tex.y - 1.0f) * xy_scale) +
-                     ns * (2.0f * tex.z - 1.0f);
-    const float n_len = gc_length(n);
-    if (!(n_len > 1.0e-6f)) return ns;
-    const float3 nn = n * (1.0f / n_len);
-    return gc_dot(nn, ns) > 0.0f ? nn : ns;
-}
-
-/* Texture coordinates at barycentrics b = (b0, b1, b2) of the triangle's corners. */
-GC_FUNC float2 gc_triangle_uv(GcTriangleAttribs a, float3 b)
-{
-    return make_float2(b.x * a.uv01.x + b.y * a.uv01.z + b.z * a.uv2_u, b.x * a.uv01.y + b.y * a.uv01.w + b.z * a.uv2_v);
-}
-
-/* glTF alphaMode BLEND as stochastic transparency: transparent with probability 1 - alpha
- * (u uniform in [0, 1)). MASK is decided in traversal (gc_alpha.h), not here. */
-GC_FUNC bool gc_alpha_transparent(GcMaterial m, float alpha, float u)
-{
-    if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) return u >= alpha;
-    return false;
-}
-
-/* The geometric normal on the side that direction w leaves into. */
-GC_FUNC float3 gc_side_normal(float3 ng, float3 w) { return gc_dot(ng, w) >= 0.0f ? ng : -ng; }
-
+/* v with a w component (the path state's packed float4s). */
 GC_FUNC float4 gc_with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, w); }
-
-/* Radiance a path gathers when its ray leaves the scene in direction d: the environment,
- * MIS-weighted against environment-map sampling unless the last bounce was specular. */
-GC_FUNC float3 gc_escaped_radiance(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, float3 d)
-{
-    GC_SHADE_UNUSED();
-#if GC_HAS_LIGHT_BUFFERS
-    const float3 Le = gc_env_radiance(GC_LIGHTS_ARGS, params, d);
-    if (!gc_has_env_map(params) || (path.flags & GC_PATH_SPECULAR) != 0u) return Le;
-    const float pdf_light = gc_light_group_pmf(params) * gc_env_pdf_w(GC_LIGHTS_ARGS, params, d);
-    return Le * gc_power_heuristic(path.throughput.w, pdf_light);
-#else
-    return GC_XYZ(params.env_radiance);
-#endif
-}
-
-/* Next-event estimation's light sample from the shading point p: r.x picks a light group
- * (emitters, point lights, environment map, in that order, uniformly among those present)
- * and, rescaled, the light within it; r.y, r.z pick the point on it. */
-GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, float3 p, float4 r)
-{
-    GC_SHADE_UNUSED();
-    GcLightSample ls;
-    ls.wi = make_float3(0.0f, 0.0f, 1.0f);
-    ls.radiance = make_float3(0.0f, 0.0f, 0.0f);
-    ls.target = p;
-    ls.pdf_w = 0.0f;
-    ls.dist = 0.0f;
-    ls.kind = GC_LIGHT_NONE;
-    const float group_pmf = gc_light_group_pmf(params);
-    if (!(group_pmf > 0.0f)) return ls;
-    const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
-    float u = r.x * gc_float(groups);
-    uint group = gc_uint(u);
-    if (group >= groups) group = groups - 1u;
-    u = fmin(u - gc_float(group), 0.99999994f);
-    if (params.num_emitters == 0u) group += 1u;                  /* no emitter group */
-    if (group == 1u && !gc_has_point_lights(params)) group = 2u; /* no point-light group */
-
-    if (group == 0u) {
-        const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params.num_emitters, u));
-        const float3 b = gc_sample_uniform_triangle(r.y, r.z);
-        const float3 p_light = b.x * GC_XYZ(e.v0) + b.y * GC_XYZ(e.v1) + b.z * GC_XYZ(e.v2);
-        const GcTriangleAttribs la = GC_ATTRIB(e.triangle);
-        const GcMaterial lm = GC_MATERIAL(la.material);
-        const float3 to_light = p_light - p;
-        const float dist = gc_length(to_light);
-        if (!(dist > 0.0f)) return ls;
-        ls.wi = to_light / dist;
-        const float cos_light = gc_dot(GC_XYZ(la.ng), -ls.wi);
-        if (!gc_emits_toward(lm, cos_light)) return ls;
-        ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, gc_triangle_uv(la, b));
-        ls.pdf_w = group_pmf * gc_light_pdf_w(GC_XYZ(lm.emission), params.emitter_power, dist, cos_light);
-        /* The shadow ray from p must stop short of the light's own triangle: its t there carries
-         * error in proportion to both ends' magnitudes. */
-        ls.target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -ls.wi), gc_spawn_scale(p, la.ng.w));
-        ls.dist = dist;
-        ls.kind = GC_LIGHT_AREA;
-        return ls;
-    }
-#if GC_HAS_LIGHT_BUFFERS
-    /* The constants drop each group's code from programs built for scenes without it. */
-    if (GC_POINT_LIGHT_CODE != 0 && group == 1u) {
-        uint i = gc_uint(u * gc_float(params.num_point_lights));
-        if (i >= params.num_point_lights) i = params.num_point_lights - 1u;
-        const GcPointLight light = GC_POINT_LIGHT(i);
-        const float3 to_light = GC_XYZ(light.position) - p;
-        const float dist = gc_length(to_light);
-        if (!(dist > 0.0f)) return ls;
-        ls.wi = to_light / dist;
-        ls.radiance = GC_XYZ(light.intensity) * (1.0f / (dist * dist));
-        ls.pdf_w = group_pmf / gc_float(params.num_point_lights);
-        ls.target = GC_XYZ(light.position);
-        ls.dist = dist;
-        ls.kind = GC_LIGHT_POINT;
-        return ls;
-    }
-    if (GC_ENV_MAP_CODE != 0) {
-        /* Environment map: a row from the marginal cdf, a column from that row's conditional
-         * cdf, continuous offsets inside the texel (pbrt's PiecewiseConstant2D). */
-        const uint w = params.env_width;
-        const uint h = params.env_height;
-        const uint row = gc_env_search(GC_LIGHTS_ARGS, true, 0u, h, r.y);
-        const float m0 = GC_ENV_MARGINAL(row);
-        const float m1 = GC_ENV_MARGINAL(row + 1u);
-        const float fy = m1 > m0 ? (r.y - m0) / (m1 - m0) : 0.5f;
-        const uint base = row * (w + 1u);
-        const uint col = gc_env_search(GC_LIGHTS_ARGS, false, base, w, r.z);
-        const float c0 = GC_ENV_CONDITIONAL(base + col);
-        const float c1 = GC_ENV_CONDITIONAL(base + col + 1u);
-        const float fx = c1 > c0 ? (r.z - c0) / (c1 - c0) : 0.5f;
-        ls.wi = gc_env_direction((gc_float(col) + fx) / gc_float(w), (gc_float(row) + fy) / gc_float(h));
-        /* The density is re-evaluated from the direction, exactly as gc_escaped_radiance's
-         * MIS weight will be, so the two strategies agree on every sample. */
-        ls.pdf_w = group_pmf * gc_env_pdf_w(GC_LIGHTS_ARGS, params, ls.wi);
-        ls.radiance = gc_env_radiance(GC_LIGHTS_ARGS, params, ls.wi);
-        ls.dist = GC_FLOAT_MAX;
-        ls.kind = GC_LIGHT_ENV;
-    }
-#endif
-    return ls;
-}
 
 /* Shades the vertex where `ray` (the path's last segment) ended with `hit`. */
 GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray, GcHit hit)

@@ -40,6 +40,9 @@ GC_FUNC float3 gc_offset_ray_origin(float3 p, float3 n, float scale)
     return make_float3(p.x + n.x * step, p.y + n.y * step, p.z + n.z * step);
 }
 
+/* The geometric normal on the side that direction w leaves into. */
+GC_FUNC float3 gc_side_normal(float3 ng, float3 w) { return gc_dot(ng, w) >= 0.0f ? ng : -ng; }
+
 GC_NAMESPACE_END
 
 #endif /* GC_SPAWN_H */

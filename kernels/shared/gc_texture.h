@@ -3,20 +3,15 @@
  *
  * Textures are plain buffers, not OpenCL image objects: PoCL and lavapipe differ in image
  * support, and filtering done here in IEEE float arithmetic is identical on every device.
- * The texel buffer is reached through GC_TEXELS_PARAM / GC_TEXEL(i); GLSL overrides them
- * to read an SSBO, like gc_traverse.h does for the BVH.
+ * The texel buffer is reached through GC_TEXELS_PARAM / GC_TEXEL(i) (gc_scene_buffers.h;
+ * GLSL reads an SSBO, kernels/vk/scene_bindings.glsl).
  */
 #ifndef GC_TEXTURE_H
 #define GC_TEXTURE_H
 
+#include "gc_scene_buffers.h"
 #include "gc_srgb_table.h"
 #include "gc_types.h"
-
-#ifndef GC_TEXELS_PARAM
-#define GC_TEXELS_PARAM GC_GLOBAL const uint* texels
-#define GC_TEXELS_ARG texels
-#define GC_TEXEL(i) texels[i]
-#endif
 
 GC_NAMESPACE_BEGIN
 

@@ -9,20 +9,10 @@
  * buffer types then change (GcTraversalNode and GcTraversalTriangle in gc_types.h name
  * whichever layout is compiled).
  *
- * Buffers come in through four macros, so the body does not care whether they are pointers
- * or shader-storage globals. Defaults (OpenCL C and C++):
- *     GC_BVH_PARAMS  GC_GLOBAL const GcBvhNode* gc_bvh_nodes, GC_GLOBAL const GcTriangle* gc_bvh_tris
- *     GC_BVH_ARGS    gc_bvh_nodes, gc_bvh_tris
- *     GC_BVH_NODE(i) gc_bvh_nodes[i]
- *     GC_BVH_TRI(i)  gc_bvh_tris[i]
- * GLSL has no pointers: declare the SSBOs first and define all four before including, e.g.
- *     layout(std430, binding = 1) readonly buffer BvhNodes { GcBvhNode bvh_nodes[]; };
- *     layout(std430, binding = 2) readonly buffer BvhTris { GcTriangle bvh_tris[]; };
- *     #define GC_BVH_PARAMS uint gc_bvh_unused
- *     #define GC_BVH_ARGS 0u
- *     #define GC_BVH_NODE(i) bvh_nodes[i]
- *     #define GC_BVH_TRI(i) bvh_tris[i]
- * (GC_BVH_PARAMS must name one parameter because the signatures put a comma after it.)
+ * Buffers come in as GC_BVH_PARAMS / GC_BVH_ARGS and are read through GC_BVH_NODE(i) and
+ * GC_BVH_TRI(i), so the body does not care whether they are pointers or shader-storage
+ * globals; gc_scene_buffers.h generates all four from the one list of scene buffers (GLSL:
+ * a dummy parameter and the SSBOs of kernels/vk/scene_bindings.glsl).
  *
  * Conventions the host builder (host/bvh) guarantees and this code relies on:
  *   - node 0 is the root; the tree is at most GC_BVH_MAX_DEPTH levels deep, so the ordered
@@ -48,23 +38,23 @@
  * Alpha test (glTF alphaMode MASK): a triangle whose GcTriangle flags carry
  * GC_TRI_ALPHA_TESTED is a candidate only where GC_ALPHA_TEST(scene_tri, u, v) is true
  * (solid); a candidate that fails is ignored by closest and any hit alike, as if the ray had
- * missed it. Without a GC_ALPHA_TEST definition (trace.cl, the host's plain reference) the
- * test is not compiled at all: every triangle is solid. The path kernels include
- * gc_alpha.h first, which widens GC_BVH_PARAMS by the material buffers and defines the hook.
+ * missed it. The traversal takes the alpha test's buffers after the BVH's (the scene-buffer
+ * group trace). A program (or host translation unit) that defines GC_TRACE_OPAQUE before
+ * its includes — trace.cl, the probes, the host's plain reference — gets the traversal of
+ * opaque triangles instead: the BVH buffers only, and no test compiled at all. It is a mode
+ * of the whole program, like GC_BVH_WIDE, so no header's include order decides it.
  * Whether a triangle is solid at (u, v) is a pure function of the triangle, so the tie rule
  * and the brute-force equality above still hold (the brute force applies the same test).
  */
 #ifndef GC_TRAVERSE_H
 #define GC_TRAVERSE_H
 
-#include "gc_intersect.h"
-
-#ifndef GC_BVH_PARAMS
-#define GC_BVH_PARAMS GC_GLOBAL const GcTraversalNode *gc_bvh_nodes, GC_GLOBAL const GcTraversalTriangle *gc_bvh_tris
-#define GC_BVH_ARGS gc_bvh_nodes, gc_bvh_tris
-#define GC_BVH_NODE(i) gc_bvh_nodes[i]
-#define GC_BVH_TRI(i) gc_bvh_tris[i]
+#include "gc_scene_buffers.h"
+#if !defined(GC_TRACE_OPAQUE)
+#include "gc_alpha.h"
+#define GC_ALPHA_TEST(scene_tri, u, v) gc_alpha_solid(GC_ALPHA_ARGS, scene_tri, u, v)
 #endif
+#include "gc_intersect.h"
 
 /* Private stack: 64 node indices plus their entry distances (512 bytes). */
 #define GC_BVH_STACK_SIZE 64u

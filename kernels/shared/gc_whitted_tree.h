@@ -38,18 +38,21 @@
  * Sibling rays of one dielectric (same depth) share their area-light random numbers: each
  * estimate stays unbiased, only correlated.
  *
- * Scene buffers come in through GC_SCENE_PARAMS (gc_path_vertex.h; GLSL defines it in
- * kernels/vk/scene_bindings.glsl). This header includes gc_alpha.h before gc_traverse.h, so
- * its traversal skips alpha-MASK cut-outs as the path kernels' does.
+ * Scene buffers come in as the scene-buffer group scene, GC_SCENE_PARAMS (gc_scene_buffers.h;
+ * GLSL reads the SSBOs of kernels/vk/scene_bindings.glsl). Its traversal skips alpha-MASK
+ * cut-outs, as the path kernels' does (gc_traverse.h).
  */
 #ifndef GC_WHITTED_TREE_H
 #define GC_WHITTED_TREE_H
 
-#include "gc_alpha.h"
 #include "gc_traverse.h"
 #include "gc_camera.h"
-#include "gc_path_vertex.h"
+#include "gc_lights.h"
+#include "gc_material_eval.h"
+#include "gc_path.h"
 #include "gc_rng.h"
+#include "gc_shading.h"
+#include "gc_spawn.h"
 #include "gc_whitted.h"
 
 #define GC_WHITTED_STACK 16u

@@ -12,8 +12,9 @@
  *             one pushed with its entry;
  *   triangle  per triangle: the watertight test and the (t, prim) acceptance.
  * Every unit returns what the loop would go on to use, so the compiler keeps all of it.
- * Built with the BVH2 layout's options only (no GC_BVH_WIDE).
+ * Built with the BVH2 layout's options only (no GC_BVH_WIDE), opaque triangles only.
  */
+#define GC_TRACE_OPAQUE 1
 #include "gc_traverse.h"
 
 /* The traversal of ray `rays[k]` up to its first node: the ray precomputed with the root's

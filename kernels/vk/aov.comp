@@ -6,7 +6,6 @@
 #version 450
 #define GC_VK_COMPUTE 1
 #include "scene_bindings.glsl"
-#include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as aov.cl */
 #include "gc_traverse.h"
 #include "gc_aov.h"
 

@@ -9,7 +9,6 @@
 #version 450
 #define GC_VK_COMPUTE 1
 #include "scene_bindings.glsl"
-#include "gc_alpha.h" /* before gc_traverse.h: alpha-MASK cut-outs, as extend.cl / shadow.cl */
 #include "gc_traverse.h"
 #include "gc_path_vertex.h"
 #include "gc_camera.h"

@@ -42,7 +42,7 @@ void main()
     if ((m.flags & GC_MATF_ALPHA_MASK) != 0u && !gc_alpha_solid(GC_ALPHA_ARGS, prim, hit.u, hit.v)) discard;
     const vec3 albedo = gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
 
-    o_preview = vec4(gc_aov_preview(albedo, s.ns, dir, gc_aov_emission(GC_SHADE_ARGS, m, s.uv)), 1.0f);
+    o_preview = vec4(gc_aov_preview(albedo, s.ns, dir, gc_shade_emission(GC_SHADE_ARGS, m, s.uv)), 1.0f);
     o_normal_depth = vec4(s.ns, hit.t);
     o_albedo = vec4(albedo, 1.0f);
     o_primid = int(prim);

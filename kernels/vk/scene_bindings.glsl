@@ -1,8 +1,9 @@
 /*
  * scene_bindings.glsl — the scene buffers as std430 SSBOs, declared with the structs of
- * kernels/shared/gc_types.h (no second, hand-written copy), and the macros through which
- * the shared headers (gc_traverse.h, gc_texture.h, gc_path.h, gc_lights.h, gc_path_vertex.h,
- * gc_whitted_tree.h) read them.
+ * kernels/shared/gc_types.h (no second, hand-written copy), and the element accessors through
+ * which the shared headers read them (the OpenCL ones are in gc_scene_buffers.h). The
+ * buffers are those of gc_scene_buffers.h's list plus the params, film, positions and sRGB
+ * table of the Vulkan passes.
  * Include after #version; define GC_VK_COMPUTE first in compute shaders (the film is
  * writable there and absent elsewhere).
  */
@@ -38,30 +39,17 @@ layout(std430, set = 0, binding = GC_VK_BINDING_POSITIONS) readonly buffer Posit
 #define GC_SRGB_TABLE_H 1
 layout(std430, set = 0, binding = GC_VK_BINDING_SRGB) readonly buffer SrgbBuffer { float gc_srgb_to_linear_table[256]; };
 
-/* GLSL has no pointers: every buffer "parameter" is a dummy uint, every access a global. */
-#define GC_BVH_PARAMS uint gc_bvh_unused
-#define GC_BVH_ARGS 0u
+/* Element accessors of the shared headers over the SSBOs above. The parameter lists are
+ * dummies (GLSL has no pointers: every access is a global), defined with the OpenCL ones from
+ * the one list of scene buffers in gc_scene_buffers.h. */
 #define GC_BVH_NODE(i) bvh_nodes[i]
 #define GC_BVH_TRI(i) bvh_tris[i]
-#define GC_TEXELS_PARAM uint gc_texels_unused
-#define GC_TEXELS_ARG 0u
-#define GC_TEXEL(i) texel_data[i]
-#define GC_EMITTERS_PARAM uint gc_emitters_unused
-#define GC_EMITTERS_ARG 0u
-#define GC_EMITTER(i) emitter_data[i]
-#define GC_SHADE_PARAMS uint gc_shade_unused
-#define GC_SHADE_ARGS 0u
 #define GC_ATTRIB(i) attrib_data[i]
 #define GC_MATERIAL(i) material_data[i]
 #define GC_TEXTURE(i) texture_data[i]
-#define GC_ALPHA_PARAMS uint gc_alpha_unused
-#define GC_ALPHA_ARGS 0u
-#define GC_LIGHTS_PARAMS uint gc_lights_unused
-#define GC_LIGHTS_ARGS 0u
-#define GC_LIGHTS_UNUSED()
+#define GC_TEXEL(i) texel_data[i]
+#define GC_EMITTER(i) emitter_data[i]
 #define GC_POINT_LIGHT(i) point_light_data[i]
 #define GC_ENV_PIXEL(i) env_pixel_data[i]
 #define GC_ENV_MARGINAL(i) env_marginal_data[i]
 #define GC_ENV_CONDITIONAL(i) env_conditional_data[i]
-#define GC_SCENE_PARAMS uint gc_scene_unused
-#define GC_SCENE_ARGS 0u

@@ -1,7 +1,8 @@
-// The shading-level material code of gc_path_vertex.h on the host: glTF alpha (MASK decided
-// by gc_alpha.h's traversal test, BLEND a stochastic pass-through), normal maps in tangent
-// space, the metallicRoughness texture folded into the factors, and textured emission. One
-// triangle in the z = 0 plane, uv = (x, -y) so that dP/du = +x and "up the image" (-dP/dv) = +y.
+// The shading-level material code of gc_material_eval.h and gc_shade_vertex on the host:
+// glTF alpha (MASK decided by gc_alpha.h's traversal test, BLEND a stochastic pass-through),
+// normal maps in tangent space, the metallicRoughness texture folded into the factors, and
+// textured emission. One triangle in the z = 0 plane, uv = (x, -y) so that dP/du = +x and
+// "up the image" (-dP/dv) = +y.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
-// Environment-map importance sampling (kernels/shared/gc_lights.h + host/render/environment):
-// the density integrates to one over the sphere, samples land where the density says, and the
-// one-sample estimator of the incident radiance integral is unbiased.
+// Environment-map importance sampling (kernels/shared/gc_lights.h and gc_light_sample.h +
+// host/render/environment): the density integrates to one over the sphere, samples land where
+// the density says, and the one-sample estimator of the incident radiance integral is unbiased.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "gc_path_vertex.h"
+#include "gc_light_sample.h"
 #include "host/render/environment.h"
 
 namespace gc {

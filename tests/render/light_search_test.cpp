@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "gc_path_vertex.h"
+#include "gc_lights.h"
 
 namespace gc {
 namespace {

@@ -1,6 +1,6 @@
 // Authored per-vertex tangents (glTF TANGENT) from the scene to the shading: the octahedral
 // packing of kernels/shared/gc_tangent.h, make_triangle_attribs storing it in the normals' .w,
-// and gc_shade_normal (gc_path_vertex.h) building the normal map's frame from it, all on the
+// and gc_shade_normal (gc_material_eval.h) building the normal map's frame from it, all on the
 // host (the kernels compile the same headers).
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "gc_path_vertex.h"
+#include "gc_material_eval.h"
 #include "host/render/scene_convert.h"
 #include "host/scene/triangle_sink.h"
 
