@@ -2,9 +2,8 @@
  * holds params.samples_in_pass consecutive samples of the batch's pixels: slot
  * p * samples_in_pass + s is sample sample_index + s of pixel pixel_offset + p. A pixel's
  * samples sit side by side, so a warp's first rays all leave through one or two pixels and
- * share their nodes (H200 dragon path 1.046x against the samples laid out pixel by pixel,
- * Cornell box 1.009x; same bits). Every slot is queued, so the queue is the identity and its
- * count is the pass's size: no atomics. */
+ * share their nodes (docs/decisions/cpu-pass-length.md; same bits either way). Every slot is
+ * queued, so the queue is the identity and its count is the pass's size: no atomics. */
 #include "gc_camera.h"
 #include "gc_path.h"
 #include "gc_rng.h"

@@ -15,22 +15,18 @@
  * rays of six to eight of its pixel's samples as one packet (gc_packet8.h), then follows each
  * path alone; fewer go one by one, for which the packet is slower. The rays leave through
  * one pixel, so one traversal serves all of them; the hits are the single-ray traversal's
- * bits. Against one camera ray at a time, path samples per second with the planner's
- * passes, H200 host's 16 PoCL cores / 2-core VM (two runs each): bunny 1.21-1.27x /
- * 1.32-1.49x, dragon 1.18-1.19x / 1.32-1.34x, Cornell box 1.00-1.11x / 1.00x (its camera
- * rays are one of about nine rays per sample), 5.2M triangles 1.05-1.11x / 0.98-1.04x.
+ * bits. The gain is largest where camera rays are a large share of a sample's rays and the
+ * tree is large (docs/decisions/camera-ray-packets.md).
  * A pass of one to four samples has too few for a packet, so there a work-item takes two to
  * eight neighbouring pixels of a row and packs their camera rays together
  * (gc_packet_lanes.h). Such passes start every render and fill the first seconds of a large
- * image on few cores. 2-core VM, both cores, against one pixel per work-item, 2-3
- * interleaved rounds: one sample per pass, bunny 1.29x and dragon 1.11-1.18x; two, 1.32x
- * and 1.16x; four, 1.23x and 1.33x; the Cornell box 0.98-1.03x.
+ * image on few cores.
  * Shadow rays stay single: eight paths in lock step, to make packets of their shadow rays,
  * lost (docs/decisions/shadow-ray-packets.md).
  *
  * One inline path loop serves both: the same loop behind helper functions (the camera ray,
- * the path, the film update each a function) ran one sample per pass at 0.87-0.93x of the
- * loop before the packets on the 2-core VM; this form runs it at 0.95-1.00x (4 rounds).
+ * the path, the film update each a function) runs one-sample passes measurably slower on
+ * PoCL (docs/decisions/camera-ray-packets.md).
  */
 #include "gc_traverse.h"
 #include "gc_packet8.h"
@@ -39,11 +35,9 @@
 #include "gc_rng.h"
 
 /* One work-item's pixels, out of line on CPUs (GC_ITEM_BODY, gc_platform.h). Inlined, PoCL
- * compiled three copies of this loop with its shading and packet code; called, once, and its
- * object shrank from 62 KB to 30 KB. Cold first image, 4 interleaved rounds, medians of
- * per-round ratios: 2-core VM (PoCL 3.1) Cornell box 0.75x, dragon 0.82x (about 1 s less);
- * H200 host's 16 cores (PoCL 5) 0.92x and 0.78x. Path samples 0.99-1.00x (Cornell box) and
- * 1.00-1.10x (dragon) on both: one call per work-item is nothing against its paths. */
+ * compiles three copies of this loop with its shading and packet code (the kernel and its two
+ * work-group launchers); called, once, which halves the object and shortens a cold start. One
+ * call per work-item is nothing against its paths (docs/decisions/cold-start.md). */
 GC_ITEM_BODY gc_megakernel_item(const uint item,
                                 const GcRenderParams params,
                                 GC_SCENE_PARAMS,

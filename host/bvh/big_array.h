@@ -9,10 +9,10 @@
 //   over the memory, and the first touch of each page would fall to it.
 // - An allocation of kHugePageMinBytes or more is aligned to 2 MiB and advised as a candidate
 //   for transparent huge pages (madvise MADV_HUGEPAGE, Linux), as Embree does for its own
-//   large allocations. With 4 KiB pages, the first touch of the flat nodes and triangles of
-//   the 5.2M-triangle scene took ~120k page faults; flatten() took 0.25-0.28 s with them and
-//   0.16-0.18 s on 2 MiB pages (this 2-core machine, where THP is "madvise" only).
-//   The advice is a hint: where it is refused, the memory is used on small pages.
+//   large allocations: on 4 KiB pages, the first touch of a large scene's flat nodes and
+//   triangles is a page fault every 4 KiB, a large share of flatten()'s time
+//   (docs/decisions/host-memory-in-place.md). The advice is a hint: where it is refused, the
+//   memory is used on small pages.
 // - Smaller allocations are aligned to kSmallArrayAlign (128 bytes).
 #pragma once
 

@@ -31,20 +31,16 @@ constexpr std::uint32_t kMaxTreeDepth = 63;
 // Subtrees smaller than the task size (m_min_task_prims) stay on their thread: the scene's
 // triangles over 32 per thread, within [512, 4096]. Small enough that the last subtrees even
 // out across the threads; large enough that a huge scene does not crowd the pool's queue.
-// A fixed 4096 left 16 cores idle at the end of mid-size builds (H200 host, tree speed
-// against rtcBuildBVH, two rounds: bunny 0.61-0.62x -> 0.78-0.87x, dragon 0.55-0.56x ->
-// 0.86-0.90x, 5.2M triangles unchanged at 0.89-0.95x; floors of 256 and 1024 and 64 per
-// thread did no better).
+// A fixed size left many cores idle at the end of mid-size builds
+// (docs/decisions/bvh-build-many-cores.md).
 constexpr std::uint32_t kMinTaskFloor = 512;
 constexpr std::uint32_t kMinTaskCeiling = 4096;
 constexpr std::uint32_t kTasksPerThread = 32;
 // Nodes of m_parallel_bin_prims triangles and more are binned (and, on four or more threads,
 // partitioned) in parallel chunks, a node of that size in kMinStableChunks of them. The size
 // is the scene's triangles per thread, within [16384, 32768]: a node needs threads of its own
-// only near the top, where the tree has fewer subtrees than threads. H200 host, 16 cores, tree
-// speed against 32768 for every scene: dragon 1.098x and 1.106x (8 and 5 interleaved
-// rounds), bunny 1.014x and 1.020x, at 16384; the 5.2M triangles lost with 16384 (0.926x),
-// and keep 32768.
+// only near the top, where the tree has fewer subtrees than threads. Measured fastest on
+// mid-size and huge scenes alike: docs/decisions/bvh-build-many-cores.md.
 constexpr std::uint32_t kParallelBinFloor = 16384;
 constexpr std::uint32_t kParallelBinCeiling = 32768;
 constexpr std::uint32_t kSplitBinPrims = 128;       // from here on, bin into two sets (add_split)
@@ -55,8 +51,8 @@ constexpr std::uint32_t kPrimChunk = 16384;         // chunk of the triangle-bou
 // side, only in another order, and nothing the builder keeps depends on that order (the bins
 // are minima, maxima and counts; each leaf's triangles are sorted by index in make_leaf; the
 // median split orders by centroid, then index). So the tree stays a pure function of the
-// scene and the options. Two chunks do not pay for the out-of-place pass (2-core VM, tree
-// speed 0.93-0.96x with them on the bunny and the dragon).
+// scene and the options. Two chunks do not pay for the out-of-place pass
+// (docs/decisions/bvh-build-many-cores.md).
 constexpr std::uint32_t kMinStableChunks = 4;
 // Node slots a thread takes from the shared array at a time; even, since nodes come in
 // sibling pairs, so a block is used up exactly before the next one is taken.
@@ -556,17 +552,16 @@ private:
     // first, each side in its previous order), whose result is unique, so the chunks do not
     // change it. Lomuto's in-place scheme below cannot be cut into chunks: the order it leaves
     // the right side in depends on the whole scan before, so with it the top levels'
-    // partitions ran on one thread each (5.2M triangles, H200 host's 16 cores: the tree in
-    // 302-329 ms, and 247-286 ms with chunks that went through scratch and back).
+    // partitions would run on one thread each while the other cores wait.
     //
     // The node's triangles move into the other array (m_refs <-> m_scratch), where its
     // children are then built, so each reference is read once and written once. The binning
     // chunks' left counts (split.chunk_lefts) place each chunk's left and right runs before a
     // triangle is read; each chunk then writes both runs forward, gathering the centroid
-    // bounds of both sides. Against the copy back, same runs: rtcBuildBVH speed 0.97x -> 1.02x
-    // (medians of 5 interleaved rounds, per-round gain 0.99-1.10x). On one thread the
-    // out-of-place pass costs more than Lomuto's, so only nodes binned in kMinStableChunks or
-    // more chunks (on as many threads) come here.
+    // bounds of both sides; copying the result back would cost a second pass over the node
+    // (docs/decisions/bvh-build-many-cores.md). On one thread the out-of-place pass costs more
+    // than Lomuto's, so only nodes binned in kMinStableChunks or more chunks (on as many
+    // threads) come here.
     std::uint32_t partition_stable(const Split& s, const NodeJob& job, NodeJob& left, NodeJob& right)
     {
         const std::uint32_t n = job.end - job.begin;

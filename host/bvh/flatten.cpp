@@ -147,10 +147,9 @@ constexpr std::uint32_t kNoCut = std::numeric_limits<std::uint32_t>::max();
 // at kCutDepth are the roots of subtrees that are first sized on all threads; the top of
 // the tree is then walked with those sizes (each such subtree's pairs are one contiguous run
 // in the serial walk's order too, so its run starts where the serial walk would reach it);
-// last, the subtrees are walked on all threads from the slots the top walk gave them.
-// 5.2M triangles on the H200 host's 16 cores: the serial walk took 86-109 ms (overlapped with
-// the triangles), a third of the whole build; the layout, triangles included, now takes
-// 40-58 ms.
+// last, the subtrees are walked on all threads from the slots the top walk gave them. On
+// many cores a serial walk of a huge tree is a large share of the whole build
+// (docs/decisions/bvh-build-many-cores.md).
 BigArray<dev::GcBvhNode> flatten_nodes(const BvhTree& tree, TaskPool* pool)
 {
     // The builder's array may hold a few unreferenced slots, so it bounds the count from above;

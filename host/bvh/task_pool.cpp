@@ -25,12 +25,10 @@ namespace {
 thread_local const TaskPool* t_pool = nullptr;
 thread_local int t_index = -1;
 
-// The process's workers. Starting and joining 15 threads per pool cost every build, and a
-// CPU render makes three pools (tree, layout, collapse), where Embree's TBB keeps its threads:
-// parked workers are woken instead. H200 host (16 cores), 3 interleaved rounds against Embree
-// in the same runs, fresh threads -> parked: tree speed bunny 0.68x -> 1.00x, dragon 0.69x ->
-// 0.97x, 5.2M triangles 0.90x -> 0.99x; CPU start bunny 0.33x -> 0.50x, dragon 0.37x -> 0.58x.
-// Idle workers spinning (20000 pauses) before they sleep, as TBB's do, added nothing.
+// The process's workers. Starting and joining a thread per core for each pool would cost
+// every build, and a CPU render makes three pools (tree, layout, collapse), where Embree's TBB
+// keeps its threads: parked workers are woken instead. They sleep at once when idle: spinning
+// first, as TBB's do, gains nothing here (docs/decisions/bvh-build-many-cores.md).
 class ParkedWorkers {
 public:
     ~ParkedWorkers()

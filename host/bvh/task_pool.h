@@ -50,10 +50,8 @@ public:
     // the rest as tasks of one group. Rethrows the first exception (the caller's own first).
     // While it waits, the caller runs only these tasks, else sleeps. They are the chunks of one
     // job, such as a node's binning, whose end releases more work (the node's partition, then
-    // its children); an unrelated task picked up meanwhile, often a whole subtree, held that
-    // work back while other threads ran dry. H200 host, tree speed against rtcBuildBVH, 4-5
-    // interleaved rounds against waiting with any task: 16 cores, 5.2M triangles 1.117x and
-    // 1.156x (two runs), dragon 1.112x, bunny 1.125x; 4 cores, 5.2M triangles 1.077x.
+    // its children); an unrelated task picked up meanwhile, often a whole subtree, would hold
+    // that work back while other threads run dry (docs/decisions/bvh-build-many-cores.md).
     template <class Fn>
     void for_each(std::size_t count, const Fn& fn)
     {
@@ -115,10 +113,9 @@ private:
 
     std::mutex m_mutex;
     // Two wake-up calls, so that a finished task does not wake every idle worker: with one
-    // condition variable and notify_all per finished group, every idle thread woke (to find
-    // nothing) for each of a mid-size build's hundreds of subtree tasks. H200 host, 16 cores,
-    // against Embree's commit in the same runs: CPU start of the dragon 0.34-0.39x -> 0.45-0.48x,
-    // the tree alone unchanged within noise (separate runs, not interleaved).
+    // condition variable and notify_all per finished group, every idle thread would wake (to
+    // find nothing) for each of a mid-size build's hundreds of subtree tasks
+    // (docs/decisions/bvh-build-many-cores.md).
     std::condition_variable m_work;     // a task was queued, or the pool stops (idle workers)
     std::condition_variable m_progress; // a task was queued or a group finished (threads in wait())
     int m_waiting = 0;                  // threads blocked in wait(), guarded by m_mutex

@@ -21,25 +21,10 @@ constexpr std::uint32_t kBlockLanes = 4;
 // The largest BVH2 subtree that becomes one wide leaf, tested block by block instead of
 // through a node of its own: one block's worth, except in the BVH8 of a large scene. There a
 // node visit is mostly a cache miss, and fewer, fuller leaves save more node visits than
-// their extra triangle tests cost: the larger the tree, the longer the leaves that pay.
-// H200 host, PoCL on 16 cores, rays against Embree's best in the same run, medians of
-// interleaved rounds:
-//   dragon (100k triangles, an 8 MB BVH8, beyond a core's 2 MB L2), leaves of up to 4 -> 8
-//     triangles: primary 0.53 -> 0.535x, diffuse 0.655 -> 0.69x, shadow 0.735 -> 0.775x,
-//     path samples 0.97x (its 320x240 figure swings 15 % from run to run); up to 16
-//     triangles lost 5-7 % against 8;
-//   5.2M triangles (about 1 GB, beyond the L3), 4 -> 8 (4 rounds): primary 0.505 -> 0.535x,
-//     diffuse 0.475 -> 0.51x, shadow 0.655 -> 0.725x, path 1.08x; 8 -> 16 (medians of 6
-//     per-round ratios over two allocations): primary 1.06x, diffuse 1.06x, path 1.08x (3);
-//     device bytes per triangle 197 -> 181 -> 168.
-// On the Cornell box (36 triangles, all in L1) leaves of up to 8 cost primary and shadow
-// rays 6-9 %, hence the thresholds. In between, the bench's generator at two more sizes
-// (3 rounds each):
-//   328k triangles, up to 4 / 8 / 16: primary 0.54 / 0.54 / 0.52x, diffuse 0.56 / 0.56 /
-//     0.57x, shadow 0.67 / 0.67 / 0.62x, path 6.97 / 6.92 / 6.99 M/s: flat, so 8 stays;
-//   1.31M triangles, up to 8 -> 16: primary 0.55 -> 0.57x, diffuse 0.55 -> 0.57x, shadow
-//     0.70 -> 0.71x, path 5.84 -> 6.11 M/s (higher in every round), so 16 from 2^20 on.
-// The BVH4 (CPUs without 8-wide SIMD) was not measured with longer leaves and keeps one block.
+// their extra triangle tests cost: the larger the tree, the longer the leaves that pay. In a
+// small scene, whose tree stays in L1, longer leaves only add triangle tests. The thresholds
+// are where the BVH8 outgrows a core's L2 and most L3 caches; the BVH4 (CPUs without 8-wide
+// SIMD) keeps one block. Figures: docs/decisions/bvh8-leaf-size.md.
 constexpr std::uint32_t kLargeSceneTriangles = 65536;    // its BVH8 is beyond a core's L2
 constexpr std::uint32_t kLargeSceneLeafTriangles = 2 * kBlockLanes;
 constexpr std::uint32_t kHugeSceneTriangles = 1u << 20;  // ~170 MB: beyond most L3 caches

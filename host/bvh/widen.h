@@ -39,7 +39,8 @@ WideBvh widen(const FlatBvh& bvh, int threads = 0);  // 0: host_thread_count()
 Wide8Bvh widen8(const FlatBvh& bvh, int threads = 0);  // the same rules with eight children per node
 
 // The largest BVH2 subtree that becomes one leaf in a `width`-wide BVH of a scene of
-// `scene_triangles` triangles (widen.cpp says why and what it measured).
+// `scene_triangles` triangles (widen.cpp says why; docs/decisions/bvh8-leaf-size.md has the
+// figures).
 std::uint32_t wide_leaf_triangles(std::uint32_t width, std::size_t scene_triangles);
 
 // Bytes the layout occupies on a device.

@@ -52,10 +52,8 @@ public:
     // A read-only buffer over `data` itself (CL_MEM_USE_HOST_PTR) where the device shares the
     // host's memory (CPUs), so kernels read the host array in place: no second copy of it, and
     // the array's pages are the ones the kernels walk (BigArray puts large arrays on 2 MiB
-    // pages, which a copy into the driver's 4 KiB pages would lose). In place, the
-    // 5.2M-triangle scene's BVH8 traced 7 % more diffuse rays and 5 % more path samples per
-    // second on the H200 host's 16 PoCL cores (medians of 4 interleaved rounds), and
-    // 8-12 % more primary and diffuse rays on the 2-core VM. The caller keeps `data` alive and
+    // pages, which a copy into the driver's 4 KiB pages would lose), so a large scene traces
+    // faster (docs/decisions/host-memory-in-place.md). The caller keeps `data` alive and
     // unchanged for the buffer's lifetime. Anywhere else (a GPU, an empty array, a base the
     // device would not accept) it is an ordinary copy, as read_only_buffer makes.
     static Buffer over_host(const Context& context, std::span<const T> data, std::string name)

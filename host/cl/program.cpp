@@ -138,8 +138,8 @@ cl_program load_binary(const Context& context, const std::vector<unsigned char>&
 // carry GC_SOURCE_HASH) and the work-group functions it compiles at first launch, so a warm
 // start is as fast without our entry. Writing one costs a lot there: clGetProgramInfo(
 // CL_PROGRAM_BINARIES) makes PoCL compile a generic work-group function for every kernel on
-// top of the ones the launches need (measured, PoCL 3.1, Cornell path integrator: cold start
-// 13.6 s with our entry written, 7.3 s without; warm 0.7 s either way). With PoCL's cache
+// top of the ones the launches need, nearly doubling a cold start
+// (docs/decisions/cold-start.md). With PoCL's cache
 // turned off (BuildConfig::driver_cache_disabled), ours is the only one.
 bool driver_caches_builds(const DeviceInfo& device, const BuildConfig& config)
 {

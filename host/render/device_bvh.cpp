@@ -6,12 +6,11 @@ namespace gc {
 BvhLayout bvh_layout_for(const cl::DeviceInfo& device, std::optional<BvhLayout> chosen)
 {
     if (chosen) return *chosen;
-    // A GPU runs a warp of rays in lock step, and a float4 there is four scalar instructions:
-    // the BVH2 measured faster (H200: dragon diffuse 1229 vs 1040 Mrays/s with the BVH4).
-    // CPUs gain from the wide tests: BVH4 over BVH2 1.2-1.6x, and BVH8 over BVH4 where the
-    // SIMD unit holds eight floats (AVX), +3-16 % rays and +2-7 % path samples on the H200
-    // box's PoCL (medians of 3, Cornell, bunny, dragon). PoCL reports that width as the
-    // preferred float vector width (16 on AVX-512, 8 on AVX2, 4 on SSE).
+    // A GPU runs a warp of rays in lock step, and a float4 there is four scalar instructions,
+    // so the BVH2 is faster there. CPUs gain from the wide tests: the BVH4 over the BVH2, and
+    // the BVH8 over the BVH4 where the SIMD unit holds eight floats (AVX). Figures:
+    // docs/decisions/gpu-bvh-layout.md. PoCL reports that width as the preferred float vector
+    // width (16 on AVX-512, 8 on AVX2, 4 on SSE).
     if (device.is_gpu) return BvhLayout::Binary;
     return device.preferred_vector_width_float >= 8 ? BvhLayout::Wide8 : BvhLayout::Wide;
 }

@@ -26,7 +26,7 @@ enum class KernelFeatureSet {
 
 struct DeviceTuning {
     // The BVH layout traversed. nullopt: bvh_layout_for's choice (BVH8 or BVH4 on CPUs by
-    // SIMD width, BVH2 on GPUs), which is the fastest measured on each.
+    // SIMD width, BVH2 on GPUs), the fastest on each (docs/decisions/gpu-bvh-layout.md).
     std::optional<BvhLayout> bvh_layout;
     PathKernelForm path_kernel = PathKernelForm::Auto;
     KernelFeatureSet kernel_features = KernelFeatureSet::Scene;

@@ -3,10 +3,8 @@
 // The megakernel (kernels/megakernel.cl) gives each work-item one pixel and runs that pass's
 // samples of it one after the other. Consecutive samples of one pixel retrace nearly the same
 // camera ray and first hit, so the second and later ones find that part of the BVH, the
-// triangles and the shading data in the core's caches: on the 2-core VM, one PoCL thread,
-// the 100k-triangle dragon at 320x240 renders 1.25-1.3x faster with 16 samples per pass than
-// with one (the 36-triangle Cornell box, which lives in L1 either way, 1.03x); at 1920x1080 on
-// both cores, 6 samples per pass against one give 1.14x. Mitsuba 3 lays its wavefront out the
+// triangles and the shading data in the core's caches. That pays most where the scene does
+// not fit in L1 (docs/decisions/cpu-pass-length.md). Mitsuba 3 lays its wavefront out the
 // same way (each pixel's samples side by side).
 //
 // Longer passes, though, mean a coarser progress bar and a later stop for --time-limit and
@@ -19,11 +17,9 @@
 // keeps renders bit for bit reproducible.
 //
 // The cap is there only so that one pass cannot run away; the time target is what sizes a
-// pass. It was 16, which on many cores cut passes far below the target: the dragon at 320x240
-// on the H200 host's 16 PoCL cores ran passes of about 25 ms, each paying its launches, the
-// wait for the last work-groups and the host's round trip. Fixed passes of 64 samples there
-// rendered 1.155x the samples per second of the planner capped at 16 (3 interleaved rounds;
-// the Cornell box 1.03x; one launch per pass instead of two changed nothing, 0.98x).
+// pass. It is high because on many cores a low cap cuts passes far below the target, and
+// each short pass pays its launches, the wait for the last work-groups and the host's round
+// trip (docs/decisions/cpu-pass-length.md).
 #pragma once
 
 #include <cstdint>

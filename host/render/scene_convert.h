@@ -19,8 +19,9 @@ struct DeviceTextures {
 
 // One GcTriangleAttribs per scene triangle, in scene order. Large scenes fill it in parallel
 // chunks, into a BigArray (on huge pages, written once), because CPU devices read it in place
-// (cl::Buffer::over_host): for the 5.2M-triangle bench scene it is 590 MB, which a serial
-// fill and a driver copy made 1.6-4.3 s of the 2-core VM's time to first image.
+// (cl::Buffer::over_host): for a scene of millions of triangles it is hundreds of MB, and a
+// serial fill plus a driver copy would be seconds of the time to first image
+// (docs/decisions/host-memory-in-place.md).
 BigArray<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene);
 std::vector<dev::GcMaterial> make_materials(const Scene& scene);
 DeviceTextures make_textures(const Scene& scene);

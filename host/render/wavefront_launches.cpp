@@ -16,8 +16,7 @@ WavefrontLaunches::WavefrontLaunches(std::uint32_t max_depth, std::optional<std:
 }
 
 // The first bounce's launches are one work-item per entry: its queue is full, and a full queue
-// looped over by fewer work-items balances worse (H200: 4096 per compute unit there too gave
-// 0.98x-1.03x of one per entry).
+// looped over by fewer work-items balances no better (docs/decisions/wavefront-launch-sizing.md).
 std::uint32_t WavefrontLaunches::ray_width(std::uint32_t depth, std::uint32_t paths) const
 {
     if (depth == 0) return 0;

@@ -17,9 +17,9 @@
 
 /* t_max of a ray with no far bound. +inf rather than FLT_MAX: vectorising compilers form
  * 1/d (gc_ray_precompute) by dividing the register that holds (d, t_max) whole, and
- * 1/FLT_MAX is subnormal, which costs x86 a microcode assist on every ray (PoCL, Cornell box:
- * 1.3-1.4x the camera and diffuse rays per second with +inf); 1/inf is 0. Every finite hit
- * distance is below either bound. */
+ * 1/FLT_MAX is subnormal, which costs x86 a microcode assist on every ray
+ * (docs/decisions/denormals.md); 1/inf is 0. Every finite hit distance is below either
+ * bound. */
 #define GC_RAY_UNBOUNDED GC_INFINITY
 
 GC_NAMESPACE_BEGIN

@@ -6,9 +6,9 @@
  * and GC_USE_MATERIALS as a bitmask of the GC_MAT_* types present. Code guarded by a feature
  * that is off is never reached by that scene's data, so removing it changes no bit of the
  * image (tests/validation/determinism_test.cpp compares against the full program); what it
- * changes is the size of the program: PoCL compiles less (the Cornell box's cold build went
- * from 3.87 to 2.72 s here) and the path loop runs in fewer registers (Cycles specialises its
- * kernels by scene features for the same two reasons).
+ * changes is the size of the program: PoCL compiles less (a shorter cold build,
+ * docs/decisions/cold-start.md) and the path loop runs in fewer registers (Cycles
+ * specialises its kernels by scene features for the same two reasons).
  *
  * Without the defines (the host's C++ use of these headers, the Vulkan reference, a program
  * built by hand) every feature is on. Shared dialect (gc_platform.h).

@@ -10,10 +10,10 @@
  * one reciprocal of the determinant per triangle whose edge tests already passed (the few
  * triangles the ray's line really pierces). OpenCL 1.2 only promises 2.5 ulp for division
  * unless the program is built with -cl-fp32-correctly-rounded-divide-sqrt, so the host's
- * program builder must pass that option where the device supports it (measured on an
- * NVIDIA H200: without it about 1 hit in 4 differs from the host by a few ulp in t/u/v;
- * with it, hits are bit-identical to the host and to PoCL). No native_*, half_* or rsqrt
- * is used anywhere.
+ * program builder must pass that option where the device supports it: without it, NVIDIA's
+ * hits differ from the host's by a few ulp in t/u/v; with it, they are bit-identical to the
+ * host's and PoCL's (docs/decisions/correct-division.md). No native_*, half_* or rsqrt is
+ * used anywhere.
  *
  * Choice of triangle test: the watertight test of Woop, Benthin and Wald 2013 ("Watertight
  * Ray/Triangle Intersection", JCGT 2(1)), not Moller-Trumbore. It transforms the vertices
@@ -61,9 +61,10 @@
  *    2^-18 is 64 eps: room for the dozen roundings of the triangle test with a factor of 4.
  *    The traversal takes the largest coordinate over the *root* box (gc_ray_with_margin),
  *    which bounds |v - origin| for every triangle in the tree, so the margin is one per-ray
- *    constant instead of a dozen extra operations per box (measured on PoCL: 1.5x the rays
- *    per second on the Cornell box). It is looser than a per-box margin by the ratio of the
- *    farthest scene corner's distance to the box's, still 4e-6 of that distance in t.
+ *    constant instead of a dozen extra operations per box, which cost CPUs a large share of
+ *    the traversal (docs/decisions/bvh8-traversal-variants.md). It is looser than a per-box
+ *    margin by the ratio of the farthest scene corner's distance to the box's, still 4e-6 of
+ *    that distance in t.
  * The price is a few extra box visits within that margin of the current best distance. */
 #define GC_BOX_TFAR_SCALE 1.00000095367431640625f
 #define GC_BOX_ABS_EPS 3.814697265625e-06f

@@ -24,9 +24,8 @@
 
 /* Fewer rays than this are traced one by one: the packet tests each box and triangle in
  * turn against its lanes, where a single ray tests eight boxes or four triangles at once, so
- * a packet pays only when most lanes hold a ray. 2-core VM, path samples with the camera
- * rays of 1 / 2 / 4 / 6 / 8 samples per packet against single rays: dragon 0.59 / 0.92 /
- * 0.90 / 1.13 / 1.15x, bunny 0.61 / 0.84 / 1.04 / 1.36 / 1.41x (2 interleaved rounds). */
+ * a packet pays only when most lanes hold a ray. Six is the fewest that won on every scene
+ * measured (docs/decisions/camera-ray-packets.md). */
 #define GC_PACKET_MIN_LANES 6u
 
 GC_NAMESPACE_BEGIN

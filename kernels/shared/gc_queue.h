@@ -2,12 +2,13 @@
  * gc_queue.h — pushing onto the wavefront's global queues with one global atomic per
  * work-group and queue instead of one per work-item (OpenCL C only).
  *
- * Why: on PoCL every push was a `lock xadd` on the one counter that all cores hammer. perf
- * put 44 % of the CPU shade kernel on the two pushes' contended cache line (Cornell box,
- * 2 cores). Here the work-items of a group count their pushes in local memory (a cache line
- * only the core running the group touches), one work-item reserves the group's range with a
- * single global atomic_add, and each work-item writes at base + its rank in the group. On
- * NVIDIA it measured neutral (its compiler already merges same-address atomics per warp).
+ * Why: on PoCL a push straight to the global counter is a `lock xadd` on the one cache line
+ * that all cores hammer, a large share of the CPU shade kernel's time
+ * (docs/decisions/pocl-hot-spots.md). Here the work-items of a group count their pushes in
+ * local memory (a cache line only the core running the group touches), one work-item
+ * reserves the group's range with a single global atomic_add, and each work-item writes at
+ * base + its rank in the group. On NVIDIA it makes no difference: its compiler already
+ * merges same-address atomics per warp.
  *
  * The ranks within a group follow local atomics, so queue order is not fixed; the image does
  * not depend on it (see wavefront.cl).

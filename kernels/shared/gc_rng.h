@@ -21,10 +21,8 @@ GC_FUNC uint4 gc_pcg4d(uint4 v)
 {
     /* In four scalars rather than one uint4: the same operations and bits, but written on the
      * vector, the hash compiled on CPUs to lane extracts and inserts around every multiply of
-     * its dependent chain (PoCL, x86). Path samples against the vector form, interleaved
-     * rounds: 2-core VM, one thread, Cornell box 1.04x and 1.015x (4 and 5 rounds), dragon
-     * 1.055x; H200 host, 16 cores, Cornell box 1.02x and 1.10x, dragon 1.085x and 1.017x (3 and
-     * 4 rounds); NVIDIA OpenCL 1.00x. */
+     * its dependent chain (PoCL, x86). GPUs compile both forms alike
+     * (docs/decisions/random-numbers.md). */
     uint x = v.x * 1664525u + 1013904223u;
     uint y = v.y * 1664525u + 1013904223u;
     uint z = v.z * 1664525u + 1013904223u;

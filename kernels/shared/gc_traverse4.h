@@ -49,9 +49,8 @@
 #define gc_lane(m, c) ((m).c != 0)
 /* any() of a comparison mask. Clang's or-reduction of the sign-extended mask compiles to
  * kmovd + test on AVX-512, where PoCL's any() moved the mask back into a vector and
- * or-ed its lanes through two shuffles (ten instructions per block). This machine, 5
- * interleaved rounds: Cornell primary 1.09x, diffuse 1.07x, dragon diffuse and shadow 1.07-1.08x
- * rays/s, path within noise (1.01x). Other compilers keep any(). */
+ * or-ed its lanes through two shuffles (ten instructions per block)
+ * (docs/decisions/bvh8-traversal-variants.md). Other compilers keep any(). */
 #if defined(__clang__) && defined(__has_builtin)
 #if __has_builtin(__builtin_reduce_or)
 #define GC_HAVE_REDUCE_OR 1
@@ -146,8 +145,7 @@ GC_FUNC float4 gc_axis4(uint k, float4 x, float4 y, float4 z)
 /* gc_intersect_triangle on four triangles at once; the comments there explain each step.
  * kx, ky, kz are the ray's r.kx, r.ky, r.kz, passed as constants by GC_WIDE_TRIANGLE4 (one
  * inlined copy per kz), so that picking a coordinate is a register choice and not a select
- * per use (nine per block): +7 % Cornell path samples and +9-11 % dragon primary and shadow
- * rays on the H200 box's PoCL, medians of 3 interleaved runs. */
+ * per use (nine per block; docs/decisions/bvh8-traversal-variants.md). */
 GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float tmax, uint kx, uint ky, uint kz)
 {
     /* Vertices relative to the origin, per world axis. */
@@ -195,8 +193,7 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
     h.hit = gc_and4(inside, gc_and4(in_range, real));
     /* Noise floor (gc_intersect_triangle), computed only for blocks with a candidate left:
      * most blocks a ray opens have none (no lane inside, or only farther than t_best), and
-     * the floor is a fifth of the test. PoCL 5, 16 cores, 8 interleaved rounds: Cornell
-     * shadow rays 1.12x, diffuse and primary 1.06x, dragon shadow 1.06x, paths 1.01-1.02x. */
+     * the floor is a fifth of the test (docs/decisions/bvh8-traversal-variants.md). */
     if (gc_any4(h.hit)) {
         /* s3 is the largest |vertex - origin| coordinate: a maximum is exact, so taking it
          * over the world axes in any order gives gc_intersect_triangle's value. */
@@ -297,10 +294,10 @@ GC_FUNC GcTriangleHits4 gc_intersect_triangle4(GcRayPre r, GcTriangle4 q, float 
  * returns at the first accepted triangle), called by gc_traverse.h's gc_trace_closest/any.
  *
  * Not inlined in OpenCL: PoCL inlines every call by default, so a kernel that asks for both
- * a closest and an any hit (the path megakernel) compiled the traversal twice. One
- * out-of-line copy cut PoCL's cold build + first launch of megakernel.cl from 2.62 to 2.32 s
- * (H200 box, medians of 3) at no measured cost in samples per second. CPUs only: these are
- * the CPU layouts, and a call costs a GPU far more.
+ * a closest and an any hit (the path megakernel) would compile the traversal twice. One
+ * out-of-line copy shortens PoCL's cold build and costs no samples per second
+ * (docs/decisions/cold-start.md). CPUs only: these are the CPU layouts, and a call costs a
+ * GPU far more.
  *
  * The ray comes as its two float4s, which travel in registers: a GcRay argument went through
  * memory as two 16-byte stores read back by one 32-byte load, which store forwarding cannot

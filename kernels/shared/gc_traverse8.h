@@ -30,8 +30,7 @@ GC_NAMESPACE_BEGIN
  * planes are loaded straight from the node at per-ray float offsets (near_x is 0, lo_x, when
  * the direction's x is not negative, else 8, hi_x; far is the other: near ^ 8), as Embree's
  * nearX/farX offsets do, instead of loading both planes and selecting one per lane: six
- * blends fewer per node. PoCL 5, 16 cores, 8 interleaved rounds against the selecting form:
- * paths 1.03x on the Cornell box and the dragon, diffuse rays 1.04x, primary rays 0.99x. */
+ * blends fewer per node (docs/decisions/bvh8-traversal-variants.md). */
 GC_FUNC float8 gc_box8_entry(GcRayPre r, float tmax, GC_GLOBAL const float* node, uint near_x, uint near_y,
                              uint near_z)
 {

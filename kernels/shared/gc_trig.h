@@ -5,10 +5,10 @@
  * Why: every angle a sampler needs is either in [-pi/4, pi/4] already (the concentric disk
  * map) or a fraction of a turn (phi = 2 pi u), which reduces to that interval exactly. The
  * platform functions cannot know that: PoCL's sin/cos run a general argument reduction on
- * every call (__pocl_argReductionS), which perf put at 5 % of the Cornell path megakernel,
- * plus 8 % in the sampler around it. And they differ between devices by an ulp or two
- * (OpenCL allows 4 ulp), so the same path took slightly different directions on PoCL and on
- * NVIDIA. These use + and * only, with contraction off (gc_platform.h), so every device and
+ * every call (__pocl_argReductionS), a visible share of a CPU path sample
+ * (docs/decisions/pocl-hot-spots.md). And they differ between devices by an ulp or two
+ * (OpenCL allows 4 ulp), so the same path would take slightly different directions on PoCL and
+ * on NVIDIA. These use + and * only, with contraction off (gc_platform.h), so every device and
  * the host compute the same bits.
  *
  * Accuracy on [-pi/4, pi/4] (tests/bsdf/trig_test.cpp measures it against double): sine within
