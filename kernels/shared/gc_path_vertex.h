@@ -83,12 +83,8 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
      * a chain of dependent multiplies; issued here, the two chains run alongside each other
      * and alongside the loads and the surface interpolation below, instead of each stalling
      * the code that waits for it. Same numbers, same bits; at max depth both go unused, and the
-     * light numbers where next-event estimation is skipped (a delta BSDF, no light).
-     * Path samples against drawing each where it is used, interleaved rounds: 2-core VM, one
-     * PoCL thread, Cornell box 1.104-1.114x, dragon 0.98-1.015x, bunny 1.018x; both cores,
-     * 1.142x, 1.036x, 1.006x; H200 host, 16 cores, Cornell box 1.02-1.08x, dragon 0.92-0.99x
-     * (two rounds), NVIDIA OpenCL 1.00x. Drawn after the max-depth return instead: Cornell box
-     * 0.966x of this; drawn before the segment is traced, in the megakernel: 0.966x. */
+     * light numbers where next-event estimation is skipped (a delta BSDF, no light). Figures:
+     * docs/decisions/random-numbers.md. */
     const float4 r_light = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
     const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
     const GcTriangleAttribs tri = GC_ATTRIB(hit.prim);
