@@ -14,6 +14,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -117,8 +118,8 @@ const char* type_name(MaterialType t)
 struct SceneState {
     PreparedScene prepared;
     std::string path;
-    std::uint64_t material_revision = 0;
-    std::uint64_t camera_revision = 0;
+    std::atomic<std::uint64_t> material_revision{0};
+    std::atomic<std::uint64_t> camera_revision{0};
     double load_seconds = 0.0;
     double bvh_seconds = 0.0;
     std::mutex mutex;  // guards the host scene against renderers uploading it on other threads
@@ -383,7 +384,13 @@ public:
 
     void clear() { m_renderer->clear(); }
 
-    std::uint32_t sample_count() const { return m_renderer->samples_done(); }
+    // 0 after a scene edit not yet rendered: the next render restarts the film.
+    std::uint32_t sample_count() const
+    {
+        if (m_state->material_revision != m_material_revision || m_state->camera_revision != m_camera_revision)
+            return 0;
+        return m_renderer->samples_done();
+    }
 
     nb::dict info() const
     {
