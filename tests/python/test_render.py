@@ -168,3 +168,17 @@ def test_write_and_read(gc, cornell, device, tmp_path):
     gc.write(tmp_path / "a.png", img[..., :3])
     png = gc.read(tmp_path / "a.png")
     assert png.shape == img.shape and np.abs(png[..., :3] - np.clip(img[..., :3], 0, 1)).max() < 0.02
+
+
+def test_gltf_render_equals_cli_and_shares_the_vocabulary(gc, device, cli, tmp_path):
+    gltf = CORNELL.parents[2] / "tests" / "data" / "scenes" / "box-textured" / "BoxTextured-PointLight.gltf"
+    out = tmp_path / "cli.pfm"
+    subprocess.run([cli, "--quiet", "--device", device, "--res", f"{RES[0]}x{RES[1]}", "--spp", "4",
+                    "--env", "0.5,0.5,0.5", str(gltf), "-o", str(out)], check=True)
+    scene = gc.load(gltf)
+    img = gc.Renderer(scene, device=device, res=RES, env=0.5).render(spp=4)
+    assert np.array_equal(img[..., :3].view(np.uint32), read_pfm(out).view(np.uint32))
+    # One vocabulary for both formats: glTF's baseColorFactor is base_color, as .mtl's Kd.
+    names = {k.rsplit("/", 1)[1] for k in scene.params if k.startswith("materials/")}
+    obj_names = {k.rsplit("/", 1)[1] for k in gc.load(CORNELL).params if k.startswith("materials/")}
+    assert names == obj_names >= {"base_color", "emission", "roughness", "metallic"}
