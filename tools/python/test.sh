@@ -28,4 +28,4 @@ echo "python: pip install . took $(( $(date +%s) - start )) s"
 
 # From outside the checkout, so that `import geocold` finds the installed package.
 cd "$venv"
-exec "$venv/bin/python" -m pytest -q -rs "$root/tests/python"
+exec "$venv/bin/python" -m pytest -q -rs -s "$root/tests/python"  # -s: the tests print their timings
