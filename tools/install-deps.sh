@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
     # Toolchain
     build-essential cmake ninja-build pkg-config python3
+    # The Python package (pip install . into a venv: tools/python/test.sh) and ccache for it
+    python3-dev python3-venv ccache
     # OpenCL: headers, ICD loader, PoCL (the CPU device), clinfo for diagnostics
     opencl-c-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
     # Host libraries
