@@ -32,8 +32,11 @@ int run_cli(const std::vector<std::string>& args)
             std::puts(version_text().c_str());
             return 0;
         }
+#ifdef GC_HAVE_OIIO
         // Before anything reads or writes an image: the module is found once per process.
+        // (A build without OpenImageIO has no module: its formats are built in.)
         set_image_module_path(image_module_from_environment());
+#endif
         set_log_level(options.quiet ? LogLevel::Quiet : (options.verbose ? LogLevel::Verbose : LogLevel::Normal));
         if (options.threads > 0) {
             // Before any OpenCL or Vulkan call: PoCL reads its thread count when it is first

@@ -548,7 +548,11 @@ NB_MODULE(_geocold, m)
 
     m.def("_configure", [](const std::string& kernel_dir, const std::string& image_module) {
         g_package_kernel_dir = kernel_dir;
+#ifdef GC_HAVE_OIIO
         if (!image_module.empty()) gc::set_image_module_path(image_module);
+#else
+        (void)image_module;  // no module: the built-in formats only
+#endif
     });
     m.def("devices", &devices);
     m.def("load", &load, "path"_a, "gltf_scene"_a = -1, "phong_as_lambert"_a = false);
