@@ -62,7 +62,9 @@ json bench_scene(const BenchScene& s, const Options& o, std::vector<DeviceSlot>&
 int run(int argc, char** argv)
 {
     const Options o = parse_options(argc, argv);
-    set_image_module_path(image_module_from_environment());
+#ifdef GC_HAVE_OIIO
+    set_image_module_path(image_module_from_environment());  // a build without OIIO has no module
+#endif
     bench_render_setup();  // a bad variable is reported before any measuring starts
     if (o.threads > 0) {
         // Before any OpenCL call (PoCL reads its thread count when it is loaded; the
