@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# On the GPU node (no package registry): builds the geocold Python module with CMake and runs
+# the pytest cases that compare Python with the CLI bit for bit, on the GPU and on PoCL.
+# Needs a build of the CLI at build/bare (tools/device/build-and-test.sh) and, carried in
+# .whl/, the wheels of nanobind, pytest, pluggy, iniconfig, packaging and pygments for the
+# node's Python (see the device tool's README for the pip download line). Logs go to $OUT.
+# Usage: tools/device/python-parity.sh
+set -uo pipefail
+out=${OUT:-build/py}
+mkdir -p "$out"
+python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /tmp/site .whl/*.whl || exit 9
+export PYTHONPATH=/tmp/site
+opencl_lib=$(ldconfig -p | awk '/libOpenCL\.so(\.1)? /{print $NF; exit}')
+{ cmake --preset bare -B build/py -DOpenCL_INCLUDE_DIR="$PWD/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
+    -DGEOCOLD_PYTHON=ON -DGEOCOLD_BUILD_TESTS=OFF -DPython_EXECUTABLE="$(command -v python3)" \
+    -Dnanobind_DIR="$(python3 -m nanobind --cmake_dir)" &&
+  cmake --build build/py -j "$(nproc)" --target _geocold &&
+  cmake --install build/py --component python --prefix /tmp/pyinst; } > "$out/py-build.log" 2>&1 ||
+  { tail -30 "$out/py-build.log"; exit 8; }
+site=$(ls -d /tmp/pyinst/lib/python3*/site-packages)
+export PYTHONPATH=$site:/tmp/site
+status=0
+for d in gpu cpu; do
+  GEOCOLD_TEST_DEVICE=$d GEOCOLD_CLI=$PWD/build/bare/geocold-cl python3 -m pytest -q -rs -p no:cacheprovider \
+    tests/python/test_render.py -k "cli or two_renders or edit" 2>&1 | tee "$out/py-$d.log" | tail -15
+  [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
+done
+exit $status
