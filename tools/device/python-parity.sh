@@ -22,7 +22,7 @@ export PYTHONPATH=$site:/tmp/site
 status=0
 for d in gpu cpu; do
   GEOCOLD_TEST_DEVICE=$d GEOCOLD_CLI=$PWD/build/bare/geocold-cl python3 -m pytest -q -rs -p no:cacheprovider \
-    tests/python/test_render.py -k "cli or two_renders or edit" 2>&1 | tee "$out/py-$d.log" | tail -15
+    tests/python/test_render.py tests/python/test_edits.py -k "cli or two_renders or edit" 2>&1 | tee "$out/py-$d.log" | tail -15
   [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
 done
 exit $status
