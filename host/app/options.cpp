@@ -62,19 +62,13 @@ void parse_resolution(const std::string& option, const std::string& text, Render
 
 IntegratorKind parse_integrator(const std::string& text)
 {
-    if (text == "path") return IntegratorKind::Path;
-    if (text == "whitted") return IntegratorKind::Whitted;
-    if (text == "aov") return IntegratorKind::Aov;
+    if (const auto kind = integrator_from_name(text)) return *kind;
     bad_value("--integrator", text, "one of path, whitted, aov");
 }
 
 AovKind parse_aov(const std::string& text)
 {
-    if (text == "preview") return AovKind::Preview;
-    if (text == "albedo") return AovKind::Albedo;
-    if (text == "normal") return AovKind::Normal;
-    if (text == "depth") return AovKind::Depth;
-    if (text == "primid") return AovKind::PrimitiveId;
+    if (const auto kind = aov_from_name(text)) return *kind;
     bad_value("--aov", text, "one of preview, albedo, normal, depth, primid");
 }
 

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include <glm/glm.hpp>
 
@@ -50,6 +52,22 @@ inline const char* aov_name(AovKind k)
     case AovKind::PrimitiveId: return "primid";
     }
     return "?";
+}
+
+// The kinds the names above name (front ends parse their users' words with these); nullopt
+// for any other word.
+inline std::optional<IntegratorKind> integrator_from_name(std::string_view name)
+{
+    for (IntegratorKind k : {IntegratorKind::Aov, IntegratorKind::Path, IntegratorKind::Whitted})
+        if (name == integrator_name(k)) return k;
+    return std::nullopt;
+}
+
+inline std::optional<AovKind> aov_from_name(std::string_view name)
+{
+    for (AovKind k : {AovKind::Preview, AovKind::Albedo, AovKind::Normal, AovKind::Depth, AovKind::PrimitiveId})
+        if (name == aov_name(k)) return k;
+    return std::nullopt;
 }
 
 }  // namespace gc

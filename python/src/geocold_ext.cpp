@@ -246,19 +246,13 @@ void set_camera(SceneState& s, const Vec3Tuple& from, const Vec3Tuple& at, const
 
 IntegratorKind parse_integrator(const std::string& text)
 {
-    if (text == "path") return IntegratorKind::Path;
-    if (text == "whitted") return IntegratorKind::Whitted;
-    if (text == "aov") return IntegratorKind::Aov;
+    if (const auto kind = integrator_from_name(text)) return *kind;
     throw UsageError("integrator must be one of path, whitted, aov, not '" + text + "'");
 }
 
 AovKind parse_aov(const std::string& text)
 {
-    if (text == "preview") return AovKind::Preview;
-    if (text == "albedo") return AovKind::Albedo;
-    if (text == "normal") return AovKind::Normal;
-    if (text == "depth") return AovKind::Depth;
-    if (text == "primid") return AovKind::PrimitiveId;
+    if (const auto kind = aov_from_name(text)) return *kind;
     throw UsageError("aov must be one of preview, albedo, normal, depth, primid, not '" + text + "'");
 }
 
