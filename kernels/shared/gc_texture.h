@@ -50,7 +50,15 @@ GC_FUNC uint gc_wrap_index(int x, int size, bool repeat)
 
 GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float v)
 {
-    /* Non-finite coordinates (a broken mesh) read a texel instead of indexing out of bounds. */
+    /* A view's uv transform (KHR_texture_transform), only where the view has one, so that
+     * untransformed lookups keep their bits. Terms in a fixed order; no contraction. */
+    if ((tex.flags & GC_TEXF_TRANSFORM) != 0u) {
+        const float tu = (tex.uv_u.x * u + tex.uv_u.y * v) + tex.uv_u.z;
+        const float tv = (tex.uv_v.x * u + tex.uv_v.y * v) + tex.uv_v.z;
+        u = tu;
+        v = tv;
+    }
+    /* Non-finite coordinates (a broken mesh, a huge transform) read a texel instead of indexing out of bounds. */
     if (!(fabs(u) < 1.0e7f)) u = 0.0f;
     if (!(fabs(v) < 1.0e7f)) v = 0.0f;
     const bool clamp_s = (tex.flags & GC_TEXF_CLAMP_S) != 0u;
