@@ -145,5 +145,46 @@ TEST(TextureViews, HugeOrNonFiniteTransformsReadATexel)
             }
 }
 
+TEST(TextureViews, NormalMapFrameFollowsTheTransform)
+{
+    auto view_of = [](const UvTransform& t) {
+        dev::GcTexture v{};
+        if (!t.is_identity()) {
+            const auto rows = uv_transform_rows(t);
+            v.flags = GC_TEXF_TRANSFORM;
+            v.uv_u = glm::vec4(rows[0], 0.0f);
+            v.uv_v = glm::vec4(rows[1], 0.0f);
+        }
+        return v;
+    };
+    auto xy = [&](const UvTransform& t, float x, float y) {
+        const dev::float2 r = dev::gc_texture_tangent_xy(view_of(t), x, y);
+        return glm::vec2(r.x, r.y);
+    };
+    EXPECT_EQ(xy(UvTransform{}, 0.3f, -0.2f), glm::vec2(0.3f, -0.2f)) << "untransformed: the same bits";
+    // A quarter turn: the texture's u grows along the mesh's v, i.e. against B (B points up
+    // the image, against v): the map's x is the frame's -y.
+    UvTransform quarter;
+    quarter.rotation = 1.57079632679f;
+    const glm::vec2 q = xy(quarter, 1.0f, 0.0f);
+    EXPECT_NEAR(q.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(q.y, -1.0f, 1e-6f);
+    // An offset or a uniform scale leaves the frame alone; a mirror in v flips y.
+    UvTransform moved;
+    moved.offset = {0.3f, 0.9f};
+    moved.scale = {4.0f, 4.0f};
+    const glm::vec2 m = xy(moved, 0.6f, -0.8f);
+    EXPECT_NEAR(m.x, 0.6f, 1e-6f);
+    EXPECT_NEAR(m.y, -0.8f, 1e-6f);
+    UvTransform flip;
+    flip.offset = {0.0f, 1.0f};
+    flip.scale = {1.0f, -1.0f};
+    EXPECT_EQ(xy(flip, 0.6f, -0.8f), glm::vec2(0.6f, 0.8f));
+    // A degenerate scale keeps the map's own frame rather than making NaNs.
+    UvTransform flat;
+    flat.scale = {0.0f, 1.0f};
+    EXPECT_EQ(xy(flat, 0.6f, -0.8f), glm::vec2(0.6f, -0.8f));
+}
+
 }  // namespace
 }  // namespace gc
