@@ -570,6 +570,44 @@ TEST(GltfTextureTransform, MalformedValuesAreRefusedNamingTheSlot)
     EXPECT_EQ(load_scene(huge.write(dir)).materials[0].albedo_uv.scale.x, 3e38f);
 }
 
+TEST(GltfQuantization, QuantizedAttributesLoadThroughTheNodeTransform)
+{
+    // KHR_mesh_quantization as an exporter writes it (and requires it): SHORT positions that a
+    // node scale dequantizes, normalized BYTE normals (renormalised), UNSIGNED_BYTE uvs.
+    ScratchDir dir;
+    std::vector<unsigned char> bin = triangle_bin();
+    bin.resize(124);
+    const std::int16_t pos[12] = {0, 0, 0, 0, 100, 0, 0, 0, 0, 100, 0, 0};
+    const std::int8_t nrm[12] = {0, 0, 127, 0, 0, 0, 100, 0, 0, 0, 127, 0};
+    const std::uint8_t uv[6] = {0, 0, 2, 0, 0, 3};
+    std::memcpy(bin.data() + 80, pos, sizeof pos);
+    std::memcpy(bin.data() + 104, nrm, sizeof nrm);
+    std::memcpy(bin.data() + 116, uv, sizeof uv);
+    Doc doc;
+    doc.buffer_length = "124";
+    doc.attributes = R"("POSITION": 3, "NORMAL": 4, "TEXCOORD_0": 5)";
+    doc.nodes = R"([{"mesh": 0, "scale": [0.01, 0.01, 0.01]}])";
+    doc.extra_accessors = R"(, {"bufferView": 2, "componentType": 5122, "count": 3, "type": "VEC3"},
+                               {"bufferView": 3, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"},
+                               {"bufferView": 4, "componentType": 5121, "count": 3, "type": "VEC2"})";
+    doc.extra_buffer_views = R"(, {"buffer": 0, "byteOffset": 80, "byteLength": 24, "byteStride": 8},
+                                  {"buffer": 0, "byteOffset": 104, "byteLength": 12, "byteStride": 4},
+                                  {"buffer": 0, "byteOffset": 116, "byteLength": 6})";
+    doc.top = R"("extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],)";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc, bin));
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err.find("KHR_mesh_quantization"), std::string::npos) << err;
+    expect_invariants(s);
+    ASSERT_EQ(s.triangle_count(), 1u);
+    EXPECT_EQ(s.positions[1], Point3(1, 0, 0));
+    EXPECT_EQ(s.positions[2], Point3(0, 1, 0));
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.normals[static_cast<std::size_t>(i)].z, 1.0f, 1e-6f) << i;
+    ASSERT_EQ(s.uvs.size(), 3u);
+    EXPECT_EQ(s.uvs[1], glm::vec2(2, 0));
+    EXPECT_EQ(s.uvs[2], glm::vec2(0, 3));
+}
+
 TEST(GltfSynthetic, CameraAndPointLights)
 {
     ScratchDir dir;
