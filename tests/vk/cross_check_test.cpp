@@ -185,6 +185,23 @@ TEST_F(CrossCheckLights, PointLight)
     expect_agreement("point light (textured box, nothing else lights it)", scene, small_settings());
 }
 
+// KHR_texture_transform on every slot of a normal-mapped model: transformed lookups and the
+// normal map's frame turned by its view (gc_texture_tangent_xy), on both sides.
+TEST_F(CrossCheckLights, TransformedTexturesOnEverySlot)
+{
+    Scene scene = repo_scene("tests/data/scenes/avocado/Avocado.gltf");
+    ASSERT_GE(scene.materials[0].normal_texture, 0);
+    Material& m = scene.materials[0];
+    m.albedo_uv.offset = {0.25f, -0.5f};
+    m.albedo_uv.rotation = 0.4f;
+    m.metallic_roughness_uv.scale = {2.0f, 0.5f};
+    m.normal_uv.rotation = 1.1f;
+    m.normal_uv.scale = {1.5f, -0.75f};
+    RenderSettings s = small_settings();
+    s.env_radiance = glm::vec3(0.8f, 0.9f, 1.0f);
+    expect_agreement("uv transforms on every slot (avocado, constant sky)", scene, s);
+}
+
 // Emitters, a point light and an environment map at once: next-event estimation chooses among
 // all three groups, and MIS weighs emitter and environment hits against that choice.
 TEST_F(CrossCheckLights, AllLightGroups)
