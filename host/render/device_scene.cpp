@@ -54,8 +54,18 @@ void DeviceScene::update_materials(const cl::Context& context, const Scene& scen
         throw UsageError("a material update needs the uploaded scene: it has " + std::to_string(triangle_count) +
                          " triangles and " + std::to_string(materials.count()) + " materials, the update " +
                          std::to_string(scene.triangle_count()) + " and " + std::to_string(scene.materials.size()));
+    std::size_t scene_texels = 0;
+    for (const Texture& t : scene.textures) scene_texels += t.texels.size();
+    if (scene_texels != texels.count())
+        throw UsageError("a material update cannot change the textures: the device holds " +
+                         std::to_string(texels.count()) + " texels, the update's scene " + std::to_string(scene_texels));
     const std::vector<dev::GcMaterial> new_materials = make_materials(scene);
     materials.write(std::span<const dev::GcMaterial>(new_materials));
+    // The materials index texture views (texture_views): a changed uv transform may add or
+    // drop a view. The views are small and share the texels already on the device.
+    const std::vector<dev::GcTexture> new_views = texture_views(scene).views;
+    textures = cl::read_only_buffer(context, new_views, "textures");
+    texture_count = static_cast<std::uint32_t>(new_views.size());
     const std::vector<dev::GcEmitter> new_emitters = make_emitters(scene);
     emitters = cl::read_only_buffer(context, new_emitters, "emitters");
     emitter_count = static_cast<std::uint32_t>(new_emitters.size());

@@ -69,7 +69,8 @@ struct DeviceScene {
     // Replaces the materials, and the emitters they make (an emission edit changes which
     // triangles emit and how strongly), from `scene`: the uploaded scene with its materials
     // edited, so the same triangles and the same number of materials (UsageError otherwise).
-    // The geometry, the BVH and the textures stay on the device; a renderer rebuilds its
+    // The geometry, the BVH and the texels stay on the device (the texture views, which the
+    // materials' uv transforms choose, are made again); a renderer rebuilds its
     // program only if the edit changed the kernel features.
     void update_materials(const cl::Context& context, const Scene& scene);
 

@@ -99,6 +99,7 @@ void Renderer::follow_scene_updates()
     const dev::GcRenderParams fresh = make_render_params(m_scene->summary, m_camera, m_settings);
     m_params.num_emitters = fresh.num_emitters;
     m_params.emitter_power = fresh.emitter_power;
+    m_params.num_textures = fresh.num_textures;
     clear();
 }
 

@@ -1,8 +1,11 @@
 #include "host/render/scene_convert.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "gc_sampling.h"
 #include "gc_tangent.h"
@@ -18,7 +21,6 @@ glm::vec4 v4(const glm::vec3& v, float w = 0.0f) { return {v.x, v.y, v.z, w}; }
 glm::vec4 v4(const Point3& p, float w = 0.0f) { return {p.x, p.y, p.z, w}; }
 glm::vec4 v4(const Normal3& n, float w = 0.0f) { return {n.x, n.y, n.z, w}; }
 
-std::uint32_t texture_index(int index) { return index < 0 ? GC_INVALID : static_cast<std::uint32_t>(index); }
 
 std::uint32_t material_type(MaterialType type)
 {
@@ -159,6 +161,7 @@ BigArray<dev::GcTriangleAttribs> make_triangle_attribs(const Scene& scene)
 
 std::vector<dev::GcMaterial> make_materials(const Scene& scene)
 {
+    const TextureViews views = texture_views(scene);
     std::vector<dev::GcMaterial> out;
     out.reserve(scene.materials.size());
     for (const Material& m : scene.materials) {
@@ -168,11 +171,12 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         d.emission = v4(m.emission, m.ior);
         d.pbr = {m.metallic, m.roughness, m.alpha_cutoff, m.transmission};
         d.type = material_type(m.type);
-        d.albedo_texture = texture_index(m.albedo_texture);
-        d.metallic_roughness_texture = texture_index(m.metallic_roughness_texture);
-        d.normal_texture = texture_index(m.normal_texture);
+        const std::array<std::uint32_t, 4>& slots = views.material_slots[out.size()];
+        d.albedo_texture = slots[0];
+        d.metallic_roughness_texture = slots[1];
+        d.normal_texture = slots[2];
         d.normal_scale = m.normal_scale;
-        d.emission_texture = texture_index(m.emission_texture);
+        d.emission_texture = slots[3];
         d.flags = (m.double_sided ? GC_MATF_TWO_SIDED : 0u) |
                   (m.alpha_mode == AlphaMode::Mask ? GC_MATF_ALPHA_MASK : 0u) |
                   (m.alpha_mode == AlphaMode::Blend ? GC_MATF_ALPHA_BLEND : 0u);
@@ -181,18 +185,28 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
     return out;
 }
 
-DeviceTextures make_textures(const Scene& scene)
+std::array<glm::vec3, 2> uv_transform_rows(const UvTransform& t)
 {
-    DeviceTextures out;
+    // In double, then rounded once: the rows are uploaded, so every device reads these bits.
+    const double c = std::cos(static_cast<double>(t.rotation));
+    const double s = std::sin(static_cast<double>(t.rotation));
+    const double sx = t.scale.x, sy = t.scale.y;
+    return {glm::vec3(static_cast<float>(c * sx), static_cast<float>(s * sy), t.offset.x),
+            glm::vec3(static_cast<float>(-s * sx), static_cast<float>(c * sy), t.offset.y)};
+}
+
+TextureViews texture_views(const Scene& scene)
+{
+    TextureViews out;
     std::size_t total = 0;
     for (const Texture& t : scene.textures) total += t.texels.size();
     if (total > std::numeric_limits<std::uint32_t>::max())
         throw InputError(scene.source_path + ": textures hold " + std::to_string(total) +
                          " texels, more than the 2^32 a texel index can address");
-    out.texels.reserve(total);
+    std::uint32_t offset = 0;
     for (const Texture& t : scene.textures) {
         dev::GcTexture d{};
-        d.offset = static_cast<std::uint32_t>(out.texels.size());
+        d.offset = offset;
         d.width = static_cast<std::uint32_t>(t.width);
         d.height = static_cast<std::uint32_t>(t.height);
         auto wrap_flags = [](WrapMode mode, std::uint32_t clamp_flag, std::uint32_t mirror_flag) {
@@ -200,9 +214,47 @@ DeviceTextures make_textures(const Scene& scene)
         };
         d.flags = (t.srgb ? GC_TEXF_SRGB : 0u) | wrap_flags(t.wrap_s, GC_TEXF_CLAMP_S, GC_TEXF_MIRROR_S) |
                   wrap_flags(t.wrap_t, GC_TEXF_CLAMP_T, GC_TEXF_MIRROR_T) | (t.nearest ? GC_TEXF_NEAREST : 0u);
-        out.textures.push_back(d);
-        out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
+        out.views.push_back(d);
+        offset += static_cast<std::uint32_t>(t.texels.size());
     }
+    // Transformed views, deduplicated on the texture and the bits of the rows uploaded.
+    std::map<std::pair<int, std::array<std::uint32_t, 6>>, std::uint32_t> transformed;
+    auto view = [&](int texture, const UvTransform& transform) -> std::uint32_t {
+        if (texture < 0) return GC_INVALID;
+        if (static_cast<std::size_t>(texture) >= scene.textures.size())
+            throw InputError(scene.name_for_messages() + ": a material names texture " + std::to_string(texture) +
+                             " of " + std::to_string(scene.textures.size()));
+        if (transform.is_identity()) return static_cast<std::uint32_t>(texture);
+        const std::array<glm::vec3, 2> rows = uv_transform_rows(transform);
+        const std::array<std::uint32_t, 6> bits = {std::bit_cast<std::uint32_t>(rows[0].x), std::bit_cast<std::uint32_t>(rows[0].y),
+                                                   std::bit_cast<std::uint32_t>(rows[0].z), std::bit_cast<std::uint32_t>(rows[1].x),
+                                                   std::bit_cast<std::uint32_t>(rows[1].y), std::bit_cast<std::uint32_t>(rows[1].z)};
+        const auto [it, added] = transformed.try_emplace({texture, bits}, static_cast<std::uint32_t>(out.views.size()));
+        if (added) {
+            dev::GcTexture d = out.views[static_cast<std::size_t>(texture)];
+            d.flags |= GC_TEXF_TRANSFORM;
+            d.uv_u = glm::vec4(rows[0], 0.0f);
+            d.uv_v = glm::vec4(rows[1], 0.0f);
+            out.views.push_back(d);
+        }
+        return it->second;
+    };
+    out.material_slots.reserve(scene.materials.size());
+    for (const Material& m : scene.materials)
+        out.material_slots.push_back({view(m.albedo_texture, m.albedo_uv),
+                                      view(m.metallic_roughness_texture, m.metallic_roughness_uv),
+                                      view(m.normal_texture, m.normal_uv), view(m.emission_texture, m.emission_uv)});
+    return out;
+}
+
+DeviceTextures make_textures(const Scene& scene)
+{
+    DeviceTextures out;
+    out.textures = texture_views(scene).views;
+    std::size_t total = 0;
+    for (const Texture& t : scene.textures) total += t.texels.size();
+    out.texels.reserve(total);
+    for (const Texture& t : scene.textures) out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
     return out;
 }
 
@@ -260,7 +312,7 @@ SceneSummary summarize(const Scene& scene)
     summary.triangles = static_cast<std::uint32_t>(scene.triangle_count());
     summary.emitters = static_cast<std::uint32_t>(make_emitters(scene).size());
     summary.point_lights = static_cast<std::uint32_t>(scene.point_lights.size());
-    summary.textures = static_cast<std::uint32_t>(scene.textures.size());
+    summary.textures = static_cast<std::uint32_t>(texture_views(scene).views.size());
     summary.emitter_power = total_emitter_power(scene);
     return summary;
 }

@@ -2,6 +2,7 @@
 // Pure functions of the scene: no device needed, so tests check them on the host.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -13,9 +14,27 @@
 namespace gc {
 
 struct DeviceTextures {
-    std::vector<dev::GcTexture> textures;
+    std::vector<dev::GcTexture> textures;  // the views of texture_views
     std::vector<std::uint32_t> texels;
 };
+
+// The device's texture views. View i < scene.textures.size() is scene texture i untransformed
+// (so a scene without uv transforms uploads what it always did); after them, one view per
+// distinct (texture, non-identity transform) pair that a material slot reads, in order of
+// first use, sharing its texture's texels. Materials index views (slots: albedo,
+// metallic-roughness, normal, emission; GC_INVALID = no texture). make_materials and
+// make_textures both read this one table, so their indices agree.
+struct TextureViews {
+    std::vector<dev::GcTexture> views;
+    std::vector<std::array<std::uint32_t, 4>> material_slots;  // one per scene material
+};
+TextureViews texture_views(const Scene& scene);
+
+// The affine map of a slot's uv transform: rows (a, b, c) and (d, e, f) with
+// u' = a u + b v + c, v' = d u + e v + f, i.e. T(offset) R(rotation) S(scale) as glTF's
+// KHR_texture_transform defines it (rotation turns the uvs counter-clockwise in glTF's
+// uv space, whose v points down the image).
+std::array<glm::vec3, 2> uv_transform_rows(const UvTransform& t);
 
 // One GcTriangleAttribs per scene triangle, in scene order. Large scenes fill it in parallel
 // chunks, into a BigArray (on huge pages, written once), because CPU devices read it in place

@@ -52,25 +52,37 @@ AccessorView gltf_accessor_view(const tinygltf::Model& model, int index, Accesso
     if (a.sparse.isSparse) fail(file, ctx + "sparse accessors are not supported");
 
     const int ct = a.componentType;
+    // Core glTF 2.0 plus KHR_mesh_quantization, which adds integer vertex attributes:
+    // POSITION any of (unsigned) byte/short, normalized or not; NORMAL and TANGENT
+    // normalized byte/short; TEXCOORD (unsigned) byte/short, normalized or not. Normalized
+    // values read back by the spec's formulas (AccessorView::get). Accepted whether or not the
+    // file declares the extension: reading them is unambiguous.
+    const bool is_float = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool is_small_int = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                              ct == TINYGLTF_COMPONENT_TYPE_SHORT || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool is_signed_normalized =
+        a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT);
     bool ok_type = false;
     switch (use) {
-    case AccessorUse::Position:
-    case AccessorUse::Normal: ok_type = a.type == TINYGLTF_TYPE_VEC3 && ct == TINYGLTF_COMPONENT_TYPE_FLOAT; break;
-    case AccessorUse::TexCoord:
-        ok_type = a.type == TINYGLTF_TYPE_VEC2 &&
-                  (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                   (a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
-        break;
+    case AccessorUse::Position: ok_type = a.type == TINYGLTF_TYPE_VEC3 && (is_float || is_small_int); break;
+    case AccessorUse::Normal: ok_type = a.type == TINYGLTF_TYPE_VEC3 && (is_float || is_signed_normalized); break;
+    case AccessorUse::TexCoord: ok_type = a.type == TINYGLTF_TYPE_VEC2 && (is_float || is_small_int); break;
     case AccessorUse::Index:
         ok_type = a.type == TINYGLTF_TYPE_SCALAR &&
                   (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
                    ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
         break;
-    case AccessorUse::Tangent: ok_type = a.type == TINYGLTF_TYPE_VEC4 && ct == TINYGLTF_COMPONENT_TYPE_FLOAT; break;
+    case AccessorUse::Tangent: ok_type = a.type == TINYGLTF_TYPE_VEC4 && (is_float || is_signed_normalized); break;
     }
+    // A normalized FLOAT or a normalized index is not glTF.
+    if (a.normalized && (is_float || use == AccessorUse::Index)) ok_type = false;
     if (!ok_type) {
-        static const char* expected[] = {"VEC3 FLOAT", "VEC3 FLOAT", "VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT",
-                                         "SCALAR UNSIGNED_BYTE/SHORT/INT", "VEC4 FLOAT"};
+        static const char* expected[] = {
+            "VEC3 FLOAT or (KHR_mesh_quantization) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT",
+            "VEC3 FLOAT or (KHR_mesh_quantization) normalized BYTE/SHORT",
+            "VEC2 FLOAT, normalized UNSIGNED_BYTE/SHORT or (KHR_mesh_quantization) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT",
+            "SCALAR UNSIGNED_BYTE/SHORT/INT",
+            "VEC4 FLOAT or (KHR_mesh_quantization) normalized BYTE/SHORT"};
         fail(file, ctx + type_name(a.type) + " " + component_name(ct) + (a.normalized ? " (normalized)" : "") +
              " where " + expected[static_cast<int>(use)] + " is required");
     }

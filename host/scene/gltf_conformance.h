@@ -18,8 +18,12 @@ namespace gc {
 //   KHR_materials_emissive_strength   emissiveStrength
 //   KHR_materials_ior                 ior
 //   KHR_materials_transmission        transmissionFactor
-inline constexpr std::array<std::string_view, 4> k_supported_gltf_extensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission"};
+//   KHR_mesh_quantization             integer POSITION/NORMAL/TANGENT/TEXCOORD accessors
+//                                     (gltf_accessor.cpp)
+//   KHR_texture_transform             offset, rotation, scale, texCoord on every texture slot
+inline constexpr std::array<std::string_view, 6> k_supported_gltf_extensions = {
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior",
+    "KHR_materials_transmission", "KHR_mesh_quantization",           "KHR_texture_transform"};
 
 bool gltf_extension_supported(std::string_view name);
 

@@ -410,6 +410,10 @@ private:
         out.albedo_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, where);
         out.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false, where);
         out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, false, where);
+        out.albedo_uv = uv_transform(pbr.baseColorTexture.extensions, where + ": baseColorTexture");
+        out.metallic_roughness_uv = uv_transform(pbr.metallicRoughnessTexture.extensions, where + ": metallicRoughnessTexture");
+        out.normal_uv = uv_transform(m.normalTexture.extensions, where + ": normalTexture");
+        out.emission_uv = uv_transform(m.emissiveTexture.extensions, where + ": emissiveTexture");
         out.normal_scale = static_cast<float>(m.normalTexture.scale);
         if (!std::isfinite(out.normal_scale)) fail(where + ": non-finite normalTexture.scale");
         // What the renderer does not model is said once per material, not silently dropped.
@@ -422,6 +426,50 @@ private:
                 log_warning(m_name + ": " + where + ": extension " + ext + " is not supported; ignored");
         out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, where);
         return out;
+    }
+
+    // A textureInfo's KHR_texture_transform (identity without one). The spec gives no
+    // fallback for malformed values, so they are refused, naming the slot; values that are
+    // merely huge pass (the lookup reads texel 0 for coordinates past 1e7, gc_texture.h).
+    UvTransform uv_transform(const tinygltf::ExtensionMap& extensions, const std::string& where) const
+    {
+        UvTransform t;
+        const auto it = extensions.find("KHR_texture_transform");
+        if (it == extensions.end()) return t;
+        const tinygltf::Value& ext = it->second;
+        const std::string ctx = where + ": KHR_texture_transform ";
+        if (!ext.IsObject()) fail(ctx + "is not an object");
+        auto vec2 = [&](const char* key, glm::vec2 fallback) {
+            if (!ext.Has(key)) return fallback;
+            const tinygltf::Value& v = ext.Get(key);
+            if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+                fail(ctx + key + " is not an array of two numbers");
+            const glm::vec2 out(static_cast<float>(v.Get(0).GetNumberAsDouble()), static_cast<float>(v.Get(1).GetNumberAsDouble()));
+            if (!std::isfinite(out.x) || !std::isfinite(out.y)) fail(ctx + key + " is not finite (in float)");
+            return out;
+        };
+        t.offset = vec2("offset", t.offset);
+        t.scale = vec2("scale", t.scale);
+        if (ext.Has("rotation")) {
+            const tinygltf::Value& v = ext.Get("rotation");
+            if (!v.IsNumber()) fail(ctx + "rotation is not a number");
+            t.rotation = static_cast<float>(v.GetNumberAsDouble());
+            if (!std::isfinite(t.rotation)) fail(ctx + "rotation is not finite (in float)");
+        }
+        return t;
+    }
+
+    // The TEXCOORD set a textureInfo reads: KHR_texture_transform's texCoord overrides the
+    // textureInfo's own.
+    int tex_coord(const tinygltf::ExtensionMap& extensions, int own, int material) const
+    {
+        const auto it = extensions.find("KHR_texture_transform");
+        if (it == extensions.end() || !it->second.IsObject() || !it->second.Has("texCoord")) return own;
+        const tinygltf::Value& v = it->second.Get("texCoord");
+        const double d = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+        if (!(d >= 0.0 && d <= 31.0) || d != std::floor(d))
+            fail("material " + std::to_string(material) + ": KHR_texture_transform texCoord is not an integer in [0, 31]");
+        return static_cast<int>(d);
     }
 
     bool declared_as_used(const std::string& extension) const
@@ -445,10 +493,12 @@ private:
     int uv_set(const tinygltf::Material& m, int index)
     {
         const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-        const std::pair<int, int> slots[] = {{pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
-                                             {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord},
-                                             {m.normalTexture.index, m.normalTexture.texCoord},
-                                             {m.emissiveTexture.index, m.emissiveTexture.texCoord}};
+        const std::pair<int, int> slots[] = {
+            {pbr.baseColorTexture.index, tex_coord(pbr.baseColorTexture.extensions, pbr.baseColorTexture.texCoord, index)},
+            {pbr.metallicRoughnessTexture.index,
+             tex_coord(pbr.metallicRoughnessTexture.extensions, pbr.metallicRoughnessTexture.texCoord, index)},
+            {m.normalTexture.index, tex_coord(m.normalTexture.extensions, m.normalTexture.texCoord, index)},
+            {m.emissiveTexture.index, tex_coord(m.emissiveTexture.extensions, m.emissiveTexture.texCoord, index)}};
         int chosen = 0;
         bool found = false;
         bool mixed = false;

@@ -19,6 +19,20 @@ enum class MaterialType : std::uint32_t { Lambert, Phong, Mirror, Dielectric, Pb
 enum class AlphaMode : std::uint32_t { Opaque, Mask, Blend };
 enum class WrapMode : std::uint32_t { Repeat, ClampToEdge, MirroredRepeat };
 
+// glTF KHR_texture_transform on one material slot: the slot reads its texture at
+// T(offset) * R(rotation) * S(scale) applied to the mesh's uv. Identity by default.
+struct UvTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;   // radians; glTF's sense: the uvs turn counter-clockwise
+    glm::vec2 scale{1.0f};
+
+    bool is_identity() const
+    {
+        return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+    }
+    bool operator==(const UvTransform&) const = default;
+};
+
 struct Material {
     std::string name = "default";
     MaterialType type = MaterialType::Lambert;
@@ -39,6 +53,12 @@ struct Material {
     int normal_texture = -1;
     float normal_scale = 1.0f;   // glTF normalTexture.scale (tangent-space xy factor)
     int emission_texture = -1;
+    // Each slot's uv transform (KHR_texture_transform); the device gets one texture view per
+    // distinct (texture, transform) pair (scene_convert.h, texture_views).
+    UvTransform albedo_uv;
+    UvTransform metallic_roughness_uv;
+    UvTransform normal_uv;
+    UvTransform emission_uv;
 
     bool is_emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };

@@ -104,6 +104,8 @@ GC_LAYOUT_FIELD(GcTexture, offset)
 GC_LAYOUT_FIELD(GcTexture, width)
 GC_LAYOUT_FIELD(GcTexture, height)
 GC_LAYOUT_FIELD(GcTexture, flags)
+GC_LAYOUT_FIELD(GcTexture, uv_u)
+GC_LAYOUT_FIELD(GcTexture, uv_v)
 
 GC_LAYOUT_SIZE(GcEmitter)
 GC_LAYOUT_FIELD(GcEmitter, v0)

@@ -85,11 +85,13 @@ GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs 
     if (!(t_len > 1.0e-6f)) return ns;
     const float3 t = t_raw * (1.0f / t_len);
     const float3 b = gc_cross(ns, t) * tangent.w;
-    const float4 tex = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.normal_texture), uv.x, uv.y);
-    /* glTF normalTexture.scale multiplies x and y only (then the result is renormalised). */
+    const GcTexture view = GC_TEXTURE(m.normal_texture);
+    const float4 tex = gc_texture_sample(GC_TEXELS_ARG, view, uv.x, uv.y);
+    /* glTF normalTexture.scale multiplies x and y only (then the result is renormalised); a
+     * view's uv transform turns them into the mesh's frame (gc_texture_tangent_xy). */
     const float xy_scale = m.normal_scale;
-    const float3 n = t * ((2.0f * tex.x - 1.0f) * xy_scale) + b * ((2.0f * tex.y - 1.0f) * xy_scale) +
-                     ns * (2.0f * tex.z - 1.0f);
+    const float2 xy = gc_texture_tangent_xy(view, (2.0f * tex.x - 1.0f) * xy_scale, (2.0f * tex.y - 1.0f) * xy_scale);
+    const float3 n = t * xy.x + b * xy.y + ns * (2.0f * tex.z - 1.0f);
     const float n_len = gc_length(n);
     if (!(n_len > 1.0e-6f)) return ns;
     const float3 nn = n * (1.0f / n_len);

@@ -50,7 +50,15 @@ GC_FUNC uint gc_wrap_index(int x, int size, bool repeat)
 
 GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float v)
 {
-    /* Non-finite coordinates (a broken mesh) read a texel instead of indexing out of bounds. */
+    /* A view's uv transform (KHR_texture_transform), only where the view has one, so that
+     * untransformed lookups keep their bits. Terms in a fixed order; no contraction. */
+    if ((tex.flags & GC_TEXF_TRANSFORM) != 0u) {
+        const float tu = (tex.uv_u.x * u + tex.uv_u.y * v) + tex.uv_u.z;
+        const float tv = (tex.uv_v.x * u + tex.uv_v.y * v) + tex.uv_v.z;
+        u = tu;
+        v = tv;
+    }
+    /* Non-finite coordinates (a broken mesh, a huge transform) read a texel instead of indexing out of bounds. */
     if (!(fabs(u) < 1.0e7f)) u = 0.0f;
     if (!(fabs(v) < 1.0e7f)) v = 0.0f;
     const bool clamp_s = (tex.flags & GC_TEXF_CLAMP_S) != 0u;
@@ -85,6 +93,25 @@ GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float 
     const float4 top = t00 * (1.0f - fx) + t10 * fx;
     const float4 bottom = t01 * (1.0f - fx) + t11 * fx;
     return top * (1.0f - fy) + bottom * fy;
+}
+
+/* A normal map's tangent-space (x, y) as the mesh's frame sees them. The map stores x along
+ * the direction in which the *looked-up* u grows and y up its image (against its v); through
+ * a transformed view (u', v') = A (u, v) + c, those are the mesh frame's (T, B) mapped by A's
+ * inverse: x T' + y B' = ((e x + b y) T + (d x + a y) B) / det A for rows (a b c; d e f).
+ * Scaled by sqrt(|det A|), so that a rotation with a uniform scale only turns (x, y) and a
+ * mirror flips it. Untransformed views, and degenerate transforms, return (x, y) unchanged. */
+GC_FUNC float2 gc_texture_tangent_xy(GcTexture tex, float x, float y)
+{
+    if ((tex.flags & GC_TEXF_TRANSFORM) == 0u) return make_float2(x, y);
+    const float a = tex.uv_u.x;
+    const float b = tex.uv_u.y;
+    const float d = tex.uv_v.x;
+    const float e = tex.uv_v.y;
+    const float det = a * e - b * d;
+    const float k = sqrt(fabs(det)) / det;
+    if (!(fabs(k) < 1.0e30f) || !(fabs(det) > 0.0f)) return make_float2(x, y);
+    return make_float2((e * x + b * y) * k, (d * x + a * y) * k);
 }
 
 GC_NAMESPACE_END

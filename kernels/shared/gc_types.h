@@ -176,14 +176,20 @@ GC_STRUCT(GcMaterial) {
 #define GC_TEXF_MIRROR_S 8u
 #define GC_TEXF_MIRROR_T 16u
 #define GC_TEXF_NEAREST 32u
+#define GC_TEXF_TRANSFORM 64u    /* uv_u/uv_v hold a uv transform (glTF KHR_texture_transform) */
 
-/* A texture is width * height RGBA8 texels (one uint each, R in the low byte) starting at
- * `offset` in the shared texel buffer. */
+/* A texture view is width * height RGBA8 texels (one uint each, R in the low byte) starting at
+ * `offset` in the shared texel buffer, read through an optional affine uv transform: with
+ * GC_TEXF_TRANSFORM set, the lookup reads (u', v') = (uv_u.x u + uv_u.y v + uv_u.z,
+ * uv_v.x u + uv_v.y v + uv_v.z) (the w components are 0). Several views may share texels
+ * (one per distinct transform a material slot asks for, host/render/scene_convert.cpp). */
 GC_STRUCT(GcTexture) {
     uint offset;
     uint width;
     uint height;
-    uint flags; /* GC_TEXF_* */
+    uint flags;  /* GC_TEXF_* */
+    float4 uv_u; /* u' coefficients of (u, v, 1); w: 0 */
+    float4 uv_v; /* v' coefficients of (u, v, 1); w: 0 */
 } GC_STRUCT_END(GcTexture)
 
 /* One emissive triangle, for next-event estimation, with its vertices so that sampling a
@@ -339,7 +345,7 @@ static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng
               offsetof(GcTriangleAttribs, flags) == 92 && offsetof(GcTriangleAttribs, tangent) == 96);
 static_assert(sizeof(GcMaterial) == 96 && offsetof(GcMaterial, type) == 64 &&
               offsetof(GcMaterial, emission_texture) == 80);
-static_assert(sizeof(GcTexture) == 16);
+static_assert(sizeof(GcTexture) == 48 && offsetof(GcTexture, uv_u) == 16 && offsetof(GcTexture, uv_v) == 32);
 static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);
 static_assert(sizeof(GcRenderParams) == 160 && offsetof(GcRenderParams, env_width) == 144 && offsetof(GcRenderParams, env_radiance) == 64 &&

@@ -160,6 +160,36 @@ TEST_F(SessionTest, EmissionEditMovesTheLights)
     EXPECT_TRUE(same_bits(renderer.sums().sums, fresh.sums().sums));
 }
 
+TEST_F(SessionTest, UvTransformEditMakesNewTextureViews)
+{
+    // A material edit that adds a KHR_texture_transform: the device scene re-makes its texture
+    // views (the texels stay), and the render equals the edited scene uploaded afresh.
+    SceneRequest request;
+    request.path = fs::path(GC_TEST_SOURCE_DIR) / "tests/data/scenes/box-textured/BoxTextured.gltf";
+    const PreparedScene box = prepare_scene(request);
+    RenderSettings lit = small_path(4);  // the box has no light of its own: a white sky
+    lit.env_radiance = glm::vec3(1.0f);
+    auto device_box = std::make_shared<DeviceScene>(DeviceScene::upload(*context, box.scene, box.bvh));
+    Renderer renderer(*context, device_box, box.camera, lit);
+    renderer.render(0, 4);
+    Scene edited = box.scene;
+    ASSERT_GE(edited.materials[0].albedo_texture, 0);
+    edited.materials[0].albedo_uv.offset = {0.25f, 0.5f};
+    edited.materials[0].albedo_uv.rotation = 0.7f;
+    const std::uint32_t views_before = device_box->texture_count;
+    device_box->update_materials(*context, edited);
+    EXPECT_EQ(device_box->texture_count, views_before + 1);
+    renderer.render(0, 4);
+    Renderer fresh(*context, edited, build_bvh(edited), box.camera, lit);
+    fresh.render(0, 4);
+    EXPECT_TRUE(same_bits(renderer.sums(), fresh.sums()));
+    EXPECT_FALSE(same_bits(renderer.sums().sums, [&] {
+        Renderer plain(*context, box.scene, box.bvh, box.camera, lit);
+        plain.render(0, 4);
+        return plain.sums().sums;
+    }())) << "the transform changed nothing";
+}
+
 TEST_F(SessionTest, CameraMoveRestartsTheFilm)
 {
     Renderer moved(*context, scene, prepared.camera, small_path(4));

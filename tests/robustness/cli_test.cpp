@@ -1,4 +1,6 @@
 // The command line against a hostile user: bad options, bad output paths, a full disk.
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -6,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "host/image/image_io.h"
 #include "process.h"
 
 namespace gc::test {
@@ -282,6 +285,50 @@ TEST(Cli, FullDiskKeepsThePreviousImage)
     EXPECT_EQ(r.count_err_lines("error:"), 1) << r.err;
     EXPECT_EQ(read_file(target), previous) << "the previous image was damaged";
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"image.pfm"}) << "temp files left behind";
+}
+
+// Khronos' TextureTransformTest through the CLI, as its README describes it: the top row's
+// offsets read the U (green), V (blue) and UV (cyan) quadrants of UV.png, not the olive "not
+// supported" one; the rotated arrow (22.5 degrees, bottom left) points towards the "correct"
+// marker. The camera looks down -z at the quads' plane (z = 0), so a point (x, y) on it lands
+// at pixel ((x / h + 1) * 128, (1 - y / h) * 128) of the 256 x 256 image, h = 4 tan(30 deg).
+TEST(Cli, TextureTransformSampleRendersAsItsReadmeSays)
+{
+    if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
+    const TempDir dir;
+    const std::filesystem::path scene =
+        std::filesystem::path(GC_TEST_SOURCE_DIR) / "tests/data/scenes/texture-transform/TextureTransformTest.gltf";
+    const std::filesystem::path out = dir / "albedo.pfm";
+    const RunResult r = run_process(cli_path(),
+                                    {scene.string(), "--aov", "albedo", "--spp", "1", "--res", "256x256", "--device", "cpu",
+                                     "--look-from", "0,0,4", "--look-at", "0,0,0", "--up", "0,1,0", "--fov", "60", "-o",
+                                     out.string()},
+                                    cli_options());
+    show("TextureTransformTest", r);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("KHR_texture_transform"), std::string::npos) << "a supported extension: no warning";
+    const Film film = read_image(out);
+    ASSERT_EQ(film.width(), 256u);
+    const double h = 4.0 * std::tan(30.0 * 3.14159265358979 / 180.0);
+    auto at = [&](double x, double y) {
+        const auto px = static_cast<std::uint32_t>((x / h + 1.0) * 128.0);
+        const auto py = static_cast<std::uint32_t>((1.0 - y / h) * 128.0);
+        return film.at(px, py);
+    };
+    // Quad-local (-0.4, 0.4): uv (0.05, 0.05) before the offset, a flat corner of a quadrant.
+    const Rgba offset_u = at(-1.1 - 0.4, 0.55 + 0.4), offset_v = at(0.0 - 0.4, 0.55 + 0.4), offset_uv = at(1.1 - 0.4, 0.55 + 0.4);
+    std::printf("  offset U (%.3f %.3f %.3f)  V (%.3f %.3f %.3f)  UV (%.3f %.3f %.3f)\n", offset_u.r, offset_u.g, offset_u.b,
+                offset_v.r, offset_v.g, offset_v.b, offset_uv.r, offset_uv.g, offset_uv.b);
+    EXPECT_TRUE(offset_u.g > 0.3f && offset_u.r < 0.05f && offset_u.b < 0.05f) << "green";
+    EXPECT_TRUE(offset_v.b > 0.3f && offset_v.r < 0.05f && offset_v.g < 0.05f) << "blue";
+    EXPECT_TRUE(offset_uv.g > 0.3f && offset_uv.b > 0.3f && offset_uv.r < 0.05f) << "cyan";
+    // The rotation quad (centre (-1.1, -0.55)): the arrow's shaft at texel uv (0.45, 0.45) is
+    // drawn where the mesh uv is R^-1 (0.45, 0.45) = (0.243, 0.588), i.e. quad-local
+    // (-0.257, -0.088); the unrotated shaft's spot, quad-local (-0.05, 0.05), is now white.
+    const Rgba shaft = at(-1.1 - 0.257, -0.55 - 0.088), unrotated = at(-1.1 - 0.05, -0.55 + 0.05);
+    std::printf("  rotated shaft %.3f, unrotated shaft's spot %.3f\n", shaft.r, unrotated.r);
+    EXPECT_LT(shaft.r, 0.1f);
+    EXPECT_GT(unrotated.r, 0.5f);
 }
 
 }  // namespace

@@ -83,8 +83,7 @@ TEST(GltfAccessor, NormalizedTexcoordsMapToTheUnitInterval)
 
 TEST(GltfAccessor, SignedNormalizedComponentsClampAtMinusOne)
 {
-    // max(c / 127, -1): -128 and -127 are both -1. No mesh use takes signed normalised
-    // components yet, so the view is built by hand.
+    // max(c / 127, -1): -128 and -127 are both -1 (a view built by hand: four components).
     const std::vector<unsigned char> bytes = {0x80, 0x81, 0x7f, 0x00};
     AccessorView v;
     v.base = bytes.data();
@@ -163,16 +162,105 @@ TEST(GltfAccessor, EachUseAllowsOnlyTheSpecsTypes)
     const auto floats = one_accessor(bytes_of<float>({0, 0, 0, 0}), TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT, 2);
     EXPECT_NO_THROW(gltf_accessor_view(floats, 0, AccessorUse::TexCoord, "s.gltf", "m"));
     expect_input_error([&] { gltf_accessor_view(floats, 0, AccessorUse::Position, "s.gltf", "m"); },
-                       {"VEC2 FLOAT where VEC3 FLOAT is required"});
+                       {"VEC2 FLOAT where VEC3 FLOAT or"});
     expect_input_error([&] { gltf_accessor_view(floats, 0, AccessorUse::Index, "s.gltf", "m"); },
                        {"where SCALAR UNSIGNED_BYTE/SHORT/INT is required"});
-    // Texture coordinates as integers must be normalised.
-    const auto bytes = one_accessor({0, 0}, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 1);
-    expect_input_error([&] { gltf_accessor_view(bytes, 0, AccessorUse::TexCoord, "s.gltf", "m"); },
-                       {"VEC2 UNSIGNED_BYTE where VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT is required"});
+    // Normals as integers must be normalised and signed (KHR_mesh_quantization).
+    const auto bytes3 = one_accessor({0, 0, 0, 0}, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 1, 4, true);
+    expect_input_error([&] { gltf_accessor_view(bytes3, 0, AccessorUse::Normal, "s.gltf", "m"); },
+                       {"VEC3 UNSIGNED_BYTE (normalized) where VEC3 FLOAT or (KHR_mesh_quantization) normalized BYTE/SHORT"});
+    const auto signed3 = one_accessor({0, 0, 0, 0}, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_BYTE, 1, 4, false);
+    expect_input_error([&] { gltf_accessor_view(signed3, 0, AccessorUse::Normal, "s.gltf", "m"); },
+                       {"VEC3 BYTE where VEC3 FLOAT or (KHR_mesh_quantization) normalized BYTE/SHORT"});
+    // A normalized FLOAT is not glTF.
+    auto normalized_floats = floats;
+    normalized_floats.accessors[0].normalized = true;
+    expect_input_error([&] { gltf_accessor_view(normalized_floats, 0, AccessorUse::TexCoord, "s.gltf", "m"); },
+                       {"VEC2 FLOAT (normalized) where"});
     const auto vec3 = one_accessor(bytes_of<float>({0, 0, 0}), TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT, 1);
     expect_input_error([&] { gltf_accessor_view(vec3, 0, AccessorUse::Tangent, "s.gltf", "m"); },
-                       {"VEC3 FLOAT where VEC4 FLOAT is required"});
+                       {"VEC3 FLOAT where VEC4 FLOAT or"});
+}
+
+// KHR_mesh_quantization: every integer type the extension allows, per attribute, read back by
+// the spec's formulas (unsigned c / (2^n - 1), signed max(c / (2^(n-1) - 1), -1); not
+// normalised: the integer itself).
+TEST(GltfAccessor, QuantizedPositionsOfEveryIntegerType)
+{
+    // VEC3 of bytes padded to 4-byte elements, as the spec's alignment rule asks.
+    const auto b = one_accessor({0xff, 0x02, 0x80, 0x00}, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_BYTE, 1, 4);
+    const AccessorView vb = gltf_accessor_view(b, 0, AccessorUse::Position, "s.gltf", "m");
+    EXPECT_EQ(vb.get(0, 0), -1.0f);
+    EXPECT_EQ(vb.get(0, 1), 2.0f);
+    EXPECT_EQ(vb.get(0, 2), -128.0f);
+    const auto ub = one_accessor({0xff, 0x02, 0x80, 0x00}, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 1, 4);
+    EXPECT_EQ(gltf_accessor_view(ub, 0, AccessorUse::Position, "s.gltf", "m").get(0, 0), 255.0f);
+    const auto ubn = one_accessor({0xff, 0x33, 0x00, 0x00}, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 1, 4, true);
+    EXPECT_EQ(gltf_accessor_view(ubn, 0, AccessorUse::Position, "s.gltf", "m").get(0, 0), 1.0f);
+    EXPECT_EQ(gltf_accessor_view(ubn, 0, AccessorUse::Position, "s.gltf", "m").get(0, 1), 0x33 / 255.0f);
+    const auto s16 = one_accessor(bytes_of<std::int16_t>({-300, 7, 32767, 0}), TINYGLTF_TYPE_VEC3,
+                                  TINYGLTF_COMPONENT_TYPE_SHORT, 1, 8);
+    const AccessorView vs = gltf_accessor_view(s16, 0, AccessorUse::Position, "s.gltf", "m");
+    EXPECT_EQ(vs.get(0, 0), -300.0f);
+    EXPECT_EQ(vs.get(0, 2), 32767.0f);
+    const auto s16n = one_accessor(bytes_of<std::int16_t>({-32768, -32767, 16384, 0}), TINYGLTF_TYPE_VEC3,
+                                   TINYGLTF_COMPONENT_TYPE_SHORT, 1, 8, true);
+    const AccessorView vsn = gltf_accessor_view(s16n, 0, AccessorUse::Position, "s.gltf", "m");
+    EXPECT_EQ(vsn.get(0, 0), -1.0f);
+    EXPECT_EQ(vsn.get(0, 1), -1.0f);
+    EXPECT_EQ(vsn.get(0, 2), 16384 / 32767.0f);
+    const auto u16 = one_accessor(bytes_of<std::uint16_t>({65535, 1, 2, 0}), TINYGLTF_TYPE_VEC3,
+                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 1, 8);
+    EXPECT_EQ(gltf_accessor_view(u16, 0, AccessorUse::Position, "s.gltf", "m").get(0, 0), 65535.0f);
+    const auto u16n = one_accessor(bytes_of<std::uint16_t>({65535, 0, 0, 0}), TINYGLTF_TYPE_VEC3,
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 1, 8, true);
+    EXPECT_EQ(gltf_accessor_view(u16n, 0, AccessorUse::Position, "s.gltf", "m").get(0, 0), 1.0f);
+}
+
+TEST(GltfAccessor, QuantizedNormalsAndTangentsAreSignedNormalized)
+{
+    const auto nb = one_accessor({0x81, 0x7f, 0x80, 0x00}, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_BYTE, 1, 4, true);
+    const AccessorView n = gltf_accessor_view(nb, 0, AccessorUse::Normal, "s.gltf", "m");
+    EXPECT_EQ(n.get(0, 0), -1.0f);  // -127 / 127
+    EXPECT_EQ(n.get(0, 1), 1.0f);
+    EXPECT_EQ(n.get(0, 2), -1.0f);  // -128 clamps to -1
+    const auto ns = one_accessor(bytes_of<std::int16_t>({-32768, 32767, 100, 0}), TINYGLTF_TYPE_VEC3,
+                                 TINYGLTF_COMPONENT_TYPE_SHORT, 1, 8, true);
+    const AccessorView s = gltf_accessor_view(ns, 0, AccessorUse::Normal, "s.gltf", "m");
+    EXPECT_EQ(s.get(0, 0), -1.0f);
+    EXPECT_EQ(s.get(0, 1), 1.0f);
+    EXPECT_EQ(s.get(0, 2), 100 / 32767.0f);
+    const auto tb = one_accessor({0x7f, 0x00, 0x00, 0x81}, TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_BYTE, 1, 0, true);
+    const AccessorView t = gltf_accessor_view(tb, 0, AccessorUse::Tangent, "s.gltf", "m");
+    EXPECT_EQ(t.get(0, 0), 1.0f);
+    EXPECT_EQ(t.get(0, 3), -1.0f);
+    const auto ts = one_accessor(bytes_of<std::int16_t>({0, 32767, 0, 32767}), TINYGLTF_TYPE_VEC4,
+                                 TINYGLTF_COMPONENT_TYPE_SHORT, 1, 0, true);
+    EXPECT_EQ(gltf_accessor_view(ts, 0, AccessorUse::Tangent, "s.gltf", "m").get(0, 1), 1.0f);
+    const auto unnormalized = one_accessor(bytes_of<std::int16_t>({0, 1, 0, 1}), TINYGLTF_TYPE_VEC4,
+                                           TINYGLTF_COMPONENT_TYPE_SHORT, 1);
+    expect_input_error([&] { gltf_accessor_view(unnormalized, 0, AccessorUse::Tangent, "s.gltf", "mesh 2"); },
+                       {"s.gltf: mesh 2, accessor 0: VEC4 SHORT where VEC4 FLOAT or (KHR_mesh_quantization) normalized"});
+}
+
+TEST(GltfAccessor, QuantizedTexcoordsOfEveryIntegerType)
+{
+    const auto b = one_accessor({0xfd, 0x05}, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_BYTE, 1);
+    EXPECT_EQ(gltf_accessor_view(b, 0, AccessorUse::TexCoord, "s.gltf", "m").get(0, 0), -3.0f);
+    const auto bn = one_accessor({0x81, 0x40}, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_BYTE, 1, 0, true);
+    const AccessorView vbn = gltf_accessor_view(bn, 0, AccessorUse::TexCoord, "s.gltf", "m");
+    EXPECT_EQ(vbn.get(0, 0), -1.0f);
+    EXPECT_EQ(vbn.get(0, 1), 64 / 127.0f);
+    const auto ub = one_accessor({200, 0}, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 1);
+    EXPECT_EQ(gltf_accessor_view(ub, 0, AccessorUse::TexCoord, "s.gltf", "m").get(0, 0), 200.0f);
+    const auto sn = one_accessor(bytes_of<std::int16_t>({-32768, 32767}), TINYGLTF_TYPE_VEC2,
+                                 TINYGLTF_COMPONENT_TYPE_SHORT, 1, 0, true);
+    const AccessorView vsn = gltf_accessor_view(sn, 0, AccessorUse::TexCoord, "s.gltf", "m");
+    EXPECT_EQ(vsn.get(0, 0), -1.0f);
+    EXPECT_EQ(vsn.get(0, 1), 1.0f);
+    const auto us = one_accessor(bytes_of<std::uint16_t>({1000, 2}), TINYGLTF_TYPE_VEC2,
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 1);
+    EXPECT_EQ(gltf_accessor_view(us, 0, AccessorUse::TexCoord, "s.gltf", "m").get(0, 0), 1000.0f);
 }
 
 }  // namespace

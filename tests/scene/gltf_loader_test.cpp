@@ -461,6 +461,153 @@ TEST(GltfErrors, BadTangents)
     expect_input_error([&] { load_scene(TangentDoc(nan_w).write(dir)); }, {"tri.gltf", "accessor 3", "tangent 1", "not finite"});
 }
 
+// The one-triangle document with TEXCOORD_0 (floats, accessor 3) and TEXCOORD_1 (normalized
+// UNSIGNED_SHORT, KHR_mesh_quantization, accessor 4), one 1x1 texture and the given materials.
+struct UvDoc {
+    Doc doc;
+    std::vector<unsigned char> bin = triangle_bin();
+
+    explicit UvDoc(const std::string& materials)
+    {
+        const float uv0[6] = {0, 0, 1, 0, 0, 1};
+        const std::uint16_t uv1[6] = {0, 65535, 65535, 65535, 0, 0};
+        bin.resize(116);
+        std::memcpy(bin.data() + 80, uv0, sizeof uv0);
+        std::memcpy(bin.data() + 104, uv1, sizeof uv1);
+        doc.buffer_length = "116";
+        doc.attributes = R"("POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 3, "TEXCOORD_1": 4)";
+        doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+        doc.extra_accessors = R"(, {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"},
+                                   {"bufferView": 3, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC2"})";
+        doc.extra_buffer_views = R"(, {"buffer": 0, "byteOffset": 80, "byteLength": 24},
+                                      {"buffer": 0, "byteOffset": 104, "byteLength": 12})";
+        doc.top = R"("materials": )" + materials + R"(, "textures": [{"source": 0}], "images": [{"uri": "t.ppm"}],
+                     "extensionsUsed": ["KHR_texture_transform", "KHR_mesh_quantization"],)";
+    }
+
+    std::filesystem::path write(const ScratchDir& dir) const
+    {
+        dir.write("t.ppm", std::string("P6\n1 1\n255\n") + "\x80\x80\xff");
+        return write_gltf(dir, doc, bin);
+    }
+};
+
+TEST(GltfTextureTransform, ParsedPerSlot)
+{
+    ScratchDir dir;
+    const UvDoc d(R"([{"pbrMetallicRoughness": {
+        "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, -0.25]}}},
+        "metallicRoughnessTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"rotation": 0.5}}}},
+        "normalTexture": {"index": 0, "scale": 0.5, "extensions": {"KHR_texture_transform": {"scale": [2, 3]}}},
+        "emissiveTexture": {"index": 0}, "emissiveFactor": [1, 1, 1]}])");
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(d.write(dir));
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err.find("KHR_texture_transform"), std::string::npos) << err;
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.albedo_uv.offset, glm::vec2(0.5f, -0.25f));
+    EXPECT_EQ(m.albedo_uv.rotation, 0.0f);
+    EXPECT_EQ(m.albedo_uv.scale, glm::vec2(1.0f));
+    EXPECT_EQ(m.metallic_roughness_uv.rotation, 0.5f);
+    EXPECT_EQ(m.metallic_roughness_uv.offset, glm::vec2(0.0f));
+    EXPECT_EQ(m.normal_uv.scale, glm::vec2(2.0f, 3.0f));
+    EXPECT_EQ(m.normal_scale, 0.5f);
+    EXPECT_TRUE(m.emission_uv.is_identity());
+    // TEXCOORD_0 is read: no slot asks for another set.
+    ASSERT_EQ(s.uvs.size(), 3u);
+    EXPECT_EQ(s.uvs[1], glm::vec2(1, 0));
+}
+
+TEST(GltfTextureTransform, TexCoordOverrideSelectsTheSet)
+{
+    ScratchDir dir;
+    // The extension's texCoord (1) overrides the textureInfo's (0): TEXCOORD_1, quantized as
+    // normalized UNSIGNED_SHORT, is the set loaded.
+    const UvDoc one(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 0,
+        "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}}])");
+    const Scene s = load_scene(one.write(dir));
+    ASSERT_EQ(s.uvs.size(), 3u);
+    EXPECT_EQ(s.uvs[0], glm::vec2(0, 1));
+    EXPECT_EQ(s.uvs[1], glm::vec2(1, 1));
+    EXPECT_EQ(s.uvs[2], glm::vec2(0, 0));
+
+    // Slots that end up reading different sets: one set per triangle is kept, with a warning
+    // naming the file and the material.
+    const UvDoc mixed(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+        "metallicRoughnessTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}}])");
+    testing::internal::CaptureStderr();
+    const Scene m = load_scene(mixed.write(dir));
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("tri.gltf: material 0: its textures read different TEXCOORD sets"), std::string::npos) << err;
+    EXPECT_EQ(m.uvs[1], glm::vec2(1, 0));
+}
+
+TEST(GltfTextureTransform, MalformedValuesAreRefusedNamingTheSlot)
+{
+    ScratchDir dir;
+    const auto refused = [&](const std::string& ext, std::initializer_list<std::string> parts) {
+        const UvDoc d(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+            "extensions": {"KHR_texture_transform": )" + ext + "}}}}]");
+        expect_input_error([&] { load_scene(d.write(dir)); }, parts);
+    };
+    refused(R"({"offset": [1]})", {"tri.gltf", "material 0", "baseColorTexture", "offset is not an array of two numbers"});
+    refused(R"({"offset": "a"})", {"tri.gltf", "offset is not an array of two numbers"});
+    refused(R"({"scale": [1, null]})", {"tri.gltf", "scale is not an array of two numbers"});
+    refused(R"({"scale": [1e300, 1]})", {"tri.gltf", "baseColorTexture", "scale is not finite"});
+    refused(R"({"rotation": "x"})", {"tri.gltf", "rotation is not a number"});
+    refused(R"({"rotation": 1e39})", {"tri.gltf", "rotation is not finite"});
+    refused(R"({"texCoord": -1})", {"tri.gltf", "material 0", "texCoord is not an integer in [0, 31]"});
+    refused(R"({"texCoord": 0.5})", {"tri.gltf", "texCoord is not an integer"});
+    // tinygltf drops an extension value that is not an object before the loader sees it: the
+    // slot then reads its texture untransformed (the loader's own "is not an object" check
+    // stays for parsers that keep it).
+    const UvDoc scalar(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+        "extensions": {"KHR_texture_transform": 7}}}}])");
+    EXPECT_TRUE(load_scene(scalar.write(dir)).materials[0].albedo_uv.is_identity());
+    // Huge but finite values load: the lookup guards the coordinates they make (gc_texture.h).
+    const UvDoc huge(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+        "extensions": {"KHR_texture_transform": {"offset": [1e30, -1e30], "scale": [3e38, 3e38]}}}}}])");
+    EXPECT_EQ(load_scene(huge.write(dir)).materials[0].albedo_uv.scale.x, 3e38f);
+}
+
+TEST(GltfQuantization, QuantizedAttributesLoadThroughTheNodeTransform)
+{
+    // KHR_mesh_quantization as an exporter writes it (and requires it): SHORT positions that a
+    // node scale dequantizes, normalized BYTE normals (renormalised), UNSIGNED_BYTE uvs.
+    ScratchDir dir;
+    std::vector<unsigned char> bin = triangle_bin();
+    bin.resize(124);
+    const std::int16_t pos[12] = {0, 0, 0, 0, 100, 0, 0, 0, 0, 100, 0, 0};
+    const std::int8_t nrm[12] = {0, 0, 127, 0, 0, 0, 100, 0, 0, 0, 127, 0};
+    const std::uint8_t uv[6] = {0, 0, 2, 0, 0, 3};
+    std::memcpy(bin.data() + 80, pos, sizeof pos);
+    std::memcpy(bin.data() + 104, nrm, sizeof nrm);
+    std::memcpy(bin.data() + 116, uv, sizeof uv);
+    Doc doc;
+    doc.buffer_length = "124";
+    doc.attributes = R"("POSITION": 3, "NORMAL": 4, "TEXCOORD_0": 5)";
+    doc.nodes = R"([{"mesh": 0, "scale": [0.01, 0.01, 0.01]}])";
+    doc.extra_accessors = R"(, {"bufferView": 2, "componentType": 5122, "count": 3, "type": "VEC3"},
+                               {"bufferView": 3, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"},
+                               {"bufferView": 4, "componentType": 5121, "count": 3, "type": "VEC2"})";
+    doc.extra_buffer_views = R"(, {"buffer": 0, "byteOffset": 80, "byteLength": 24, "byteStride": 8},
+                                  {"buffer": 0, "byteOffset": 104, "byteLength": 12, "byteStride": 4},
+                                  {"buffer": 0, "byteOffset": 116, "byteLength": 6})";
+    doc.top = R"("extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],)";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc, bin));
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err.find("KHR_mesh_quantization"), std::string::npos) << err;
+    expect_invariants(s);
+    ASSERT_EQ(s.triangle_count(), 1u);
+    EXPECT_EQ(s.positions[1], Point3(1, 0, 0));
+    EXPECT_EQ(s.positions[2], Point3(0, 1, 0));
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.normals[static_cast<std::size_t>(i)].z, 1.0f, 1e-6f) << i;
+    ASSERT_EQ(s.uvs.size(), 3u);
+    EXPECT_EQ(s.uvs[1], glm::vec2(2, 0));
+    EXPECT_EQ(s.uvs[2], glm::vec2(0, 3));
+}
+
 TEST(GltfSynthetic, CameraAndPointLights)
 {
     ScratchDir dir;
@@ -688,14 +835,14 @@ TEST(GltfConformance, UnsupportedUsedExtensionsGetOneWarning)
     doc.primitive_extra = R"(, "indices": 2, "material": 0)";
     doc.top = R"("materials": [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1},
                                                "KHR_materials_sheen": {}, "KHR_materials_ior": {"ior": 1.2}}}],
-                 "extensionsUsed": ["KHR_texture_transform", "KHR_materials_clearcoat", "KHR_materials_ior"],)";
+                 "extensionsUsed": ["KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_ior"],)";
     testing::internal::CaptureStderr();
     const Scene s = load_scene(write_gltf(dir, doc));
     const std::string err = testing::internal::GetCapturedStderr();
     std::printf("  stderr: %s", err.c_str());
     EXPECT_EQ(s.triangle_count(), 1u);
     EXPECT_NEAR(s.materials[0].ior, 1.2f, 1e-6f);
-    EXPECT_NE(err.find("tri.gltf: uses glTF extension(s) KHR_texture_transform, KHR_materials_clearcoat, which this "
+    EXPECT_NE(err.find("tri.gltf: uses glTF extension(s) KHR_materials_specular, KHR_materials_clearcoat, which this "
                        "loader does not implement; ignored"),
               std::string::npos);
     const auto count = [&](const std::string& what) {

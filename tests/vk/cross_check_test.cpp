@@ -85,7 +85,9 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"Spot", "tests/data/scenes/spot/spot_textured.obj", 96},
                       SceneCase{"BoxTextured", "tests/data/scenes/box-textured/BoxTextured.gltf", 96},
                       // Normal map with authored TANGENTs: GLSL and OpenCL decode them alike.
-                      SceneCase{"Avocado", "tests/data/scenes/avocado/Avocado.gltf", 96}),
+                      SceneCase{"Avocado", "tests/data/scenes/avocado/Avocado.gltf", 96},
+                      // KHR_texture_transform: transformed texture views on both sides.
+                      SceneCase{"TextureTransform", "tests/data/scenes/texture-transform/TextureTransformTest.gltf", 96}),
     [](const ::testing::TestParamInfo<SceneCase>& param_info) { return std::string(param_info.param.name); });
 
 // Every light the OpenCL side has, on scenes in the repository, each through both integrators
@@ -181,6 +183,23 @@ TEST_F(CrossCheckLights, PointLight)
     const Scene scene = repo_scene("tests/data/scenes/box-textured/BoxTextured-PointLight.gltf");
     ASSERT_EQ(scene.point_lights.size(), 1u);
     expect_agreement("point light (textured box, nothing else lights it)", scene, small_settings());
+}
+
+// KHR_texture_transform on every slot of a normal-mapped model: transformed lookups and the
+// normal map's frame turned by its view (gc_texture_tangent_xy), on both sides.
+TEST_F(CrossCheckLights, TransformedTexturesOnEverySlot)
+{
+    Scene scene = repo_scene("tests/data/scenes/avocado/Avocado.gltf");
+    ASSERT_GE(scene.materials[0].normal_texture, 0);
+    Material& m = scene.materials[0];
+    m.albedo_uv.offset = {0.25f, -0.5f};
+    m.albedo_uv.rotation = 0.4f;
+    m.metallic_roughness_uv.scale = {2.0f, 0.5f};
+    m.normal_uv.rotation = 1.1f;
+    m.normal_uv.scale = {1.5f, -0.75f};
+    RenderSettings s = small_settings();
+    s.env_radiance = glm::vec3(0.8f, 0.9f, 1.0f);
+    expect_agreement("uv transforms on every slot (avocado, constant sky)", scene, s);
 }
 
 // Emitters, a point light and an environment map at once: next-event estimation chooses among
