@@ -8,7 +8,7 @@
 # The frame's N samples are cut into chunks of C = ceil(N / K) samples (--chunk-samples C);
 # task i renders samples [i*C, min((i+1)*C, N)) into FRAME.exr.parts/part-<i>.exr (a partial
 # image, written atomically), on the GPU Slurm binds to it (--gres: NVIDIA's OpenCL honours the
-# CUDA_VISIBLE_DEVICES Slurm sets; without a GPU it renders with GEOCOLD_DEVICE, default any).
+# CUDA_VISIBLE_DEVICES Slurm sets; GEOCOLD_DEVICE overrides the device, default any without a GPU).
 # The merge job runs `geocold-cl merge ... --spp N`: the bits of the frame rendered in one
 # process, or exit 7 naming the missing sample ranges. (afterany, not afterok: an afterok merge
 # never runs once a task has failed, even if the task is requeued and then succeeds.)
@@ -41,8 +41,11 @@ if [[ "${1:-}" == "__task" ]]; then
     scene=$1 spp=$2 chunk=$3 parts=$4; shift 4
     id=${SLURM_ARRAY_TASK_ID:?SLURM_ARRAY_TASK_ID is not set: run through sbatch --array}
     first=$((id * chunk)); end=$((first + chunk)); ((end > spp)) && end=$spp
-    device=${GEOCOLD_DEVICE:-any}
+    # The GPU Slurm bound to the task (it sets CUDA_VISIBLE_DEVICES, which NVIDIA's OpenCL
+    # honours, so the task sees that GPU alone), unless GEOCOLD_DEVICE says otherwise.
+    device=any
     if [[ -n "${CUDA_VISIBLE_DEVICES:-}${SLURM_JOB_GPUS:-}${SLURM_STEP_GPUS:-}" ]]; then device=gpu; fi
+    device=${GEOCOLD_DEVICE:-$device}
     cli=$(find_cli)
     "$cli" "$scene" --quiet --device "$device" --chunk-samples "$chunk" \
         --samples "$first:$end" -o "$parts/part-$id.exr" "$@" &
