@@ -1,6 +1,7 @@
 #include "host/app/render_command.h"
 
 #include <cstdio>
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <map>
@@ -31,6 +32,18 @@ std::string fixed(double value, int decimals)
 std::filesystem::path default_output(const std::string& scene_path)
 {
     return std::filesystem::path(scene_path).stem().string() + ".png";
+}
+
+// The devices that delivered chunks (every device with `all`), each name once: "A; B".
+std::string device_names(const FrameOutcome& outcome, bool all)
+{
+    std::vector<std::string> names;
+    for (const DeviceReport& d : outcome.devices)
+        if ((all || d.chunks > 0) && std::find(names.begin(), names.end(), d.name) == names.end())
+            names.push_back(d.name);
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : "; ") + n;
+    return out;
 }
 
 }  // namespace
@@ -150,10 +163,7 @@ ExitCode run_render(const Options& options)
             samples += chunk.range.count;
             part.chunks.push_back(std::move(chunk));
         }
-        std::string names;
-        for (const DeviceReport& d : outcome.devices)
-            if (d.chunks > 0) names += (names.empty() ? "" : "; ") + d.name;
-        part.device = names;
+        part.device = device_names(outcome, false);
         if (part.chunks.empty()) throw DeviceError("the time limit ended the render before any chunk was complete");
         write_partial_image(output, part);
     } else {
@@ -161,10 +171,7 @@ ExitCode run_render(const Options& options)
         progress.finish();
         outcome = frame.outcome;
         samples = frame.end_sample;
-        std::string names;
-        for (const DeviceReport& d : outcome.devices)
-            if (d.chunks > 0 || devices.size() == 1) names += (names.empty() ? "" : "; ") + d.name;
-        meta.device = names;
+        meta.device = device_names(outcome, devices.size() == 1);
         meta.spp = samples;
         meta.seconds = outcome.seconds;
         if (frame.sums.width == 0) {
