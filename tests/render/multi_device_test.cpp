@@ -11,6 +11,7 @@
 
 #include "host/render/multi_device.h"
 #include "host/render/session.h"
+#include "host/util/error.h"
 #include "tests/cl/cl_test_util.h"
 
 namespace gc {
@@ -133,6 +134,25 @@ TEST_F(MultiDeviceTest, ADeadlineKeepsTheLongestPrefix)
     ASSERT_LT(cut.end_sample, 400u);
     // The cut frame is the frame of that many samples.
     EXPECT_TRUE(same_bits(cut.sums, frame({context->device()}, ChunkPlan::for_range(0, cut.end_sample, 4))));
+}
+
+TEST_F(MultiDeviceTest, AFailingDeviceDropsOutAndTheOthersFinishTheFrame)
+{
+    cl::DeviceInfo broken = context->device();
+    broken.id = nullptr;  // no such device: its context cannot be made
+    broken.device_name = "broken device";
+    const ChunkPlan plan = ChunkPlan::for_range(0, 24, 4);
+    FrameOutcome outcome;
+    const FilmSums with_broken = frame({broken, context->device()}, plan, &outcome);
+    EXPECT_TRUE(same_bits(with_broken, frame({context->device()}, plan)));
+    ASSERT_EQ(outcome.devices.size(), 2u);
+    EXPECT_FALSE(outcome.devices[0].failure.empty());
+    EXPECT_EQ(outcome.devices[0].chunks, 0u);
+    EXPECT_EQ(outcome.devices[1].chunks, plan.chunk_count());
+    std::printf("  broken device: %s\n", outcome.devices[0].failure.c_str());
+
+    // Every device broken: the frame fails with the device's error.
+    EXPECT_THROW(render_frame({broken}, prepared, small_path(), {}, plan, {}), Error);
 }
 
 TEST(AskSize, GpusTakeMoreThanCpus)
