@@ -116,6 +116,9 @@ ExitCode run_render(const Options& options)
     const std::vector<cl::DeviceInfo> devices = select_devices(options.device);
 
     install_interrupt_handler();
+    // A partial render is a farm's task: SIGTERM (preemption, scancel) stops it like Ctrl-C,
+    // and an interrupted partial render writes nothing.
+    if (options.partial) install_termination_handler();
     ProgressBar::Options progress_options;
     progress_options.quiet = options.quiet;
     progress_options.unit = "spp";

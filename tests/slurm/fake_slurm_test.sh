@@ -47,3 +47,15 @@ set +e; wait "$task"; rc=$?; set -e
 [[ $rc == 75 ]] || fail "SIGTERM: task exit $rc, not 75"
 [[ -z "$(ls -A "$work/term")" ]] || fail "SIGTERM left files: $(ls "$work/term")"
 echo "ok: SIGTERM -> 75, nothing written"
+
+# 5. SIGTERM to geocold-cl itself (Slurm signals every process of the task): exit 130, nothing
+# written, no temp file.
+mkdir -p "$work/term2"
+"$cli" "$scene" --quiet --device cpu --samples 0:100000 --chunk-samples 100000 --res 64x64 -o "$work/term2/p.exr" &
+pid=$!
+sleep 3
+kill -TERM "$pid"
+set +e; wait "$pid"; rc=$?; set -e
+[[ $rc == 130 ]] || fail "SIGTERM to geocold-cl: exit $rc, not 130"
+[[ -z "$(ls -A "$work/term2")" ]] || fail "SIGTERM left files: $(ls "$work/term2")"
+echo "ok: SIGTERM to geocold-cl -> 130, nothing written"
