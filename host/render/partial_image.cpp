@@ -368,7 +368,10 @@ MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths
 {
     if (paths.empty()) throw UsageError("merge: no partial images given");
     MergedFrame merged;
-    std::map<std::uint32_t, std::pair<PartialChunk, std::size_t>> chunks;  // index -> chunk, file
+    // First pass: every file read and checked, only its header and chunk list kept, so that
+    // memory holds one file at a time (a farm's partials together can exceed it).
+    std::map<std::uint32_t, std::pair<ChunkRange, std::size_t>> chunks;  // index -> range, file
+    std::vector<std::size_t> chunks_left(paths.size(), 0);
     for (std::size_t f = 0; f < paths.size(); ++f) {
         PartialImage image = read_partial_image(paths[f]);
         if (f == 0) {
@@ -392,14 +395,14 @@ MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths
         }
         if (std::find(merged.devices.begin(), merged.devices.end(), image.device) == merged.devices.end())
             merged.devices.push_back(image.device);
-        for (PartialChunk& c : image.chunks) {
+        for (const PartialChunk& c : image.chunks) {
             const auto it = chunks.find(c.range.index);
             if (it != chunks.end())
                 throw IncompleteError("partial images '" + paths[it->second.second].string() + "' and '" +
                                       paths[f].string() + "' overlap: both hold chunk " + std::to_string(c.range.index) +
                                       " (samples " + range_text(c.range.first, c.range.end()) + ")");
-            const std::uint32_t index = c.range.index;
-            chunks.emplace(index, std::make_pair(std::move(c), f));
+            chunks.emplace(c.range.index, std::make_pair(c.range, f));
+            ++chunks_left[f];
         }
     }
 
@@ -412,15 +415,13 @@ MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths
         else missing.emplace_back(a, b);
     };
     std::uint32_t covered = 0;  // samples [0, covered) are in
-    for (const auto& [index, entry] : chunks) {
-        const ChunkRange& c = entry.first.range;
+    for (auto it = chunks.begin(); it != chunks.end(); ++it) {
+        const ChunkRange& c = it->second.first;
         gap(covered, c.first);
-        if (c.first < covered)  // a short chunk before: impossible with aligned chunks, kept as a guard
-            throw IncompleteError("partial image '" + paths[entry.second].string() + "' overlaps another");
         covered = c.end();
-        if (c.count < size && std::next(chunks.find(index)) != chunks.end()) {
-            gap(c.end(), (index + 1) * size);
-            covered = (index + 1) * size;
+        if (c.count < size && std::next(it) != chunks.end()) {  // a range's short end, not the frame's
+            gap(c.end(), (c.index + 1) * size);
+            covered = (c.index + 1) * size;
         }
     }
     if (expected_spp) {
@@ -436,10 +437,34 @@ MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths
                               " (render them with --samples A:B, then merge again)");
     }
 
-    for (auto& [index, entry] : chunks) {
-        if (merged.spp == 0 && index == chunks.begin()->first) merged.sums = std::move(entry.first.sums);
-        else add_sums(merged.sums, entry.first.sums);
-        merged.spp = entry.first.range.end();
+    // Second pass: the chunks in chunk order, each file read again when its first chunk is due
+    // and dropped after its last.
+    std::map<std::size_t, PartialImage> open;
+    bool started = false;
+    for (const auto& [index, entry] : chunks) {
+        const std::size_t f = entry.second;
+        auto file = open.find(f);
+        if (file == open.end()) {
+            file = open.emplace(f, read_partial_image(paths[f])).first;
+            const PartialImage& again = file->second;
+            if (again.scene_hash != merged.first.scene_hash || again.options_hash != merged.first.options_hash ||
+                again.seed != merged.first.seed || again.width != merged.first.width ||
+                again.height != merged.first.height || again.chunk_samples != size)
+                throw InputError("partial image '" + paths[f].string() + "' changed while it was being merged");
+        }
+        PartialChunk* chunk = nullptr;
+        for (PartialChunk& c : file->second.chunks)
+            if (c.range.index == index) chunk = &c;
+        if (!chunk) throw InputError("partial image '" + paths[f].string() + "' changed while it was being merged");
+        if (!started) {
+            merged.sums = std::move(chunk->sums);
+            started = true;
+        } else {
+            add_sums(merged.sums, chunk->sums);
+        }
+        chunk->sums = FilmSums{};
+        merged.spp = entry.first.end();
+        if (--chunks_left[f] == 0) open.erase(file);
     }
     return merged;
 }

@@ -58,6 +58,8 @@ PartialImage read_partial_image(const std::filesystem::path& path);
 // files (IncompleteError naming both), and together they must cover the samples [0, end)
 // without a gap, end being expected_spp when given (IncompleteError listing the missing sample
 // ranges). The chunks are added in chunk order: the bits of the frame rendered in one process.
+// Each file is read twice (checks, then pixels in chunk order), so memory holds the frame and
+// the files whose chunks are being added, not every input at once.
 struct MergedFrame {
     FilmSums sums;
     std::uint32_t spp = 0;
