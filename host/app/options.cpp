@@ -266,7 +266,8 @@ Several devices and machines (a frame is a fixed list of chunks of samples):
                            images merge only with the same chunk size
       --samples A:B        render samples [A, B) only (A a multiple of the chunk size)
                            into a partial image (.exr with per-chunk sums and counts, scene
-                           and options hashes); an interrupted partial render writes nothing
+                           and options hashes); a partial render stopped by Ctrl-C or
+                           SIGTERM writes nothing (exit 130)
   merge PART.exr... -o FRAME.exr [--spp N]
                            add partial images into the frame in chunk order (the bits of one
                            render); refuses different scenes, options or seeds (exit 3) and
