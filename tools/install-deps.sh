@@ -21,6 +21,8 @@ packages=(
     # Fuzzing only (tools/fuzz, tools/ci/robustness.sh): clang; libclang-common-15-dev holds
     # the libFuzzer and sanitizer runtimes (libclang_rt.fuzzer-x86_64.a)
     clang-15 libclang-common-15-dev
+    # The render-farm test (tests/slurm/real_slurm_test.sh starts its own daemons on localhost)
+    slurmctld slurmd slurm-client munge
 )
 
 sudo_cmd=()

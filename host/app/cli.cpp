@@ -5,6 +5,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "host/app/consistency_command.h"
@@ -23,6 +24,12 @@ namespace gc {
 int run_cli(const std::vector<std::string>& args)
 {
     try {
+        if (!args.empty() && args[0] == "merge") {
+#ifdef GC_HAVE_OIIO
+            set_image_module_path(image_module_from_environment());
+#endif
+            return static_cast<int>(run_merge(std::vector<std::string>(args.begin() + 1, args.end())));
+        }
         const Options options = parse_options(args);
         if (options.help) {
             std::fputs(usage_text().c_str(), stdout);
@@ -44,6 +51,12 @@ int run_cli(const std::vector<std::string>& args)
             set_host_thread_count(options.threads);
             cl::limit_cpu_device_threads(options.threads);
             setenv("LP_NUM_THREADS", std::to_string(options.threads).c_str(), 1);
+        } else if (names_several_devices(options.device)) {
+            // One frame on several devices: the CPU device leaves a core to the host threads
+            // that drive the others (PoCL reads the limit when it is loaded, so before any
+            // OpenCL call, and before we know whether there is a GPU).
+            const int cores = static_cast<int>(std::thread::hardware_concurrency());
+            if (cores > 1) cl::limit_cpu_device_threads(cores - 1);
         }
         if (options.list_devices) return static_cast<int>(run_list_devices());
         if (options.preview) return static_cast<int>(run_preview(options));

@@ -5,6 +5,8 @@
 namespace gc {
 
 void install_interrupt_handler();
+// The same for SIGTERM (a farm's scheduler stopping a task): the render stops at its next pass.
+void install_termination_handler();
 bool interrupt_requested();
 
 }  // namespace gc

@@ -152,6 +152,17 @@ Options parse_options(const std::vector<std::string>& args)
             o.render.env_radiance = scale;
             o.env_scale_given = true;
         }
+        else if (arg == "--samples") {
+            const std::string v = value();
+            const std::size_t colon = v.find(':');
+            if (colon == std::string::npos) bad_value(arg, v, "a sample range A:B (first sample, end)");
+            o.samples_first = static_cast<std::uint32_t>(parse_count(arg, v.substr(0, colon), 0, kMaxSpp));
+            o.samples_end = static_cast<std::uint32_t>(parse_count(arg, v.substr(colon + 1), 1, kMaxSpp));
+            if (o.samples_end <= o.samples_first) bad_value(arg, v, "a non-empty sample range A:B with A < B");
+            o.partial = true;
+        }
+        else if (arg == "--chunk-samples")
+            o.chunk_samples = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxSpp));
         else if (arg == "--threads") o.threads = static_cast<int>(parse_count(arg, value(), 1, kMaxThreads));
         else if (arg == "--wavefront-size")
             o.render.wavefront_size = static_cast<std::uint32_t>(parse_count(arg, value(), 1024, 1u << 26));
@@ -185,9 +196,18 @@ Options parse_options(const std::vector<std::string>& args)
         throw UsageError("--look-from and --look-at must differ");
     if ((!o.json_path.empty() || !o.heatmap_dir.empty()) && !o.consistency)
         throw UsageError(std::string(o.json_path.empty() ? "--heatmap" : "--json") + " needs --consistency");
+    if (o.partial && o.samples_first % o.chunk_samples != 0)
+        throw UsageError("--samples " + std::to_string(o.samples_first) + ":" + std::to_string(o.samples_end) +
+                         " must start at a multiple of the chunk size (--chunk-samples " +
+                         std::to_string(o.chunk_samples) + ")");
     if (!o.help && !o.version && !o.list_devices && o.scene_path.empty())
         throw UsageError("no scene given");
     return o;
+}
+
+bool names_several_devices(const std::string& device_spec)
+{
+    return device_spec == "all" || device_spec.find(',') != std::string::npos;
 }
 
 std::string version_text() { return "geocold-cl 0.1.0"; }
@@ -197,6 +217,7 @@ std::string usage_text()
     std::ostringstream s;
     s << R"(Usage: geocold-cl [options] SCENE
        geocold-cl --list-devices
+       geocold-cl merge PART.exr... -o FRAME.exr [--spp N]
 
 Renders a Wavefront .obj (with .mtl) or glTF 2.0 (.gltf/.glb) scene with OpenCL, on a GPU
 or on the CPU through PoCL; every device renders the same image.
@@ -206,7 +227,9 @@ Output:
                            .pfm, .ppm. Default: <scene name>.png in the current directory
 Device:
   -d, --device SPEC        any | gpu | cpu | <index> | <name substring>   (default: any,
-                           which prefers a GPU)
+                           which prefers a GPU); all, or a list 0,2: one frame on every
+                           device named, each pulling chunks of samples (a CPU device then
+                           leaves one core to the threads that drive the others)
       --list-devices       list the OpenCL devices and exit
       --threads N          CPU threads: PoCL's workers on CPU devices, lavapipe's, and the
                            BVH build (default: every core)
@@ -232,6 +255,18 @@ Rendering:
                            many as fill half a second, growing to two in long renders, up
                            to 256; on GPUs as many as the wavefront holds); the image is
                            the same bits either way
+Several devices and machines (a frame is a fixed list of chunks of samples):
+      --chunk-samples N    samples per chunk (default 64); part of the frame: partial
+                           images merge only with the same chunk size
+      --samples A:B        render samples [A, B) only (A a multiple of the chunk size)
+                           into a partial image (.exr with per-chunk sums and counts, scene
+                           and options hashes); a partial render stopped by Ctrl-C or
+                           SIGTERM writes nothing (exit 130)
+  merge PART.exr... -o FRAME.exr [--spp N]
+                           add partial images into the frame in chunk order (the bits of one
+                           render); refuses different scenes, options or seeds (exit 3) and
+                           overlapping or missing samples (exit 7, listing the ranges), and
+                           then writes nothing; --spp N: the frame must end at sample N
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
 Vulkan (when built with it):
@@ -277,6 +312,7 @@ Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file
   4 no usable device or a device failure   5 output could not be written
   6 a cross-check or consistency run found images that disagree   130 interrupted (partial image written)
+  7 merge: partial images that overlap or leave samples missing
   1 internal error (a bug: please report it)
 )";
     return s.str();

@@ -32,6 +32,11 @@ struct Options {
     std::string heatmap_dir;      // --heatmap DIR: a difference heat map per device pair
     bool res_given = false;       // --res / --width / --height given (consistency's default is 128x128)
     int threads = 0;              // --threads: CPU threads (host and PoCL); 0 = every core
+    // --samples A:B: render samples [A, B) into a partial image (host/render/partial_image.h)
+    bool partial = false;
+    std::uint32_t samples_first = 0;
+    std::uint32_t samples_end = 0;
+    std::uint32_t chunk_samples = 64;  // --chunk-samples: the frame's canonical chunk size
 
     RenderSettings render;
 
@@ -48,6 +53,9 @@ Options parse_options(const std::vector<std::string>& args);
 SceneRequest scene_request(const Options& options);
 
 std::string usage_text();
+
+// --device all, or a comma-separated list: one frame on several devices.
+bool names_several_devices(const std::string& device_spec);
 std::string version_text();
 
 }  // namespace gc

@@ -1,13 +1,20 @@
 #include "host/app/render_command.h"
 
 #include <cstdio>
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <map>
+#include <optional>
 
 #include "host/app/environment.h"
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
+#include "host/render/frame_hash.h"
+#include "host/render/multi_device.h"
+#include "host/render/partial_image.h"
 #include "host/render/session.h"
 #include "host/util/log.h"
 #include "host/util/progress.h"
@@ -27,6 +34,18 @@ std::filesystem::path default_output(const std::string& scene_path)
     return std::filesystem::path(scene_path).stem().string() + ".png";
 }
 
+// The devices that delivered chunks (every device with `all`), each name once: "A; B".
+std::string device_names(const FrameOutcome& outcome, bool all)
+{
+    std::vector<std::string> names;
+    for (const DeviceReport& d : outcome.devices)
+        if ((all || d.chunks > 0) && std::find(names.begin(), names.end(), d.name) == names.end())
+            names.push_back(d.name);
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : "; ") + n;
+    return out;
+}
+
 }  // namespace
 
 ExitCode run_list_devices()
@@ -36,6 +55,29 @@ ExitCode run_list_devices()
     if (devices.empty()) throw DeviceError("no OpenCL device found: " + why);
     std::fputs(cl::format_device_list(devices).c_str(), stdout);
     return ExitCode::Ok;
+}
+
+std::vector<cl::DeviceInfo> select_devices(const std::string& spec)
+{
+    if (!names_several_devices(spec)) return {cl::select_device(spec)};
+    std::string why;
+    const std::vector<cl::DeviceInfo> all = cl::list_devices(&why);
+    if (all.empty()) throw DeviceError("no OpenCL device found: " + why);
+    if (spec == "all") return all;
+    std::vector<cl::DeviceInfo> picked;
+    std::size_t p = 0;
+    while (p <= spec.size()) {
+        std::size_t comma = spec.find(',', p);
+        if (comma == std::string::npos) comma = spec.size();
+        const std::string one = spec.substr(p, comma - p);
+        p = comma + 1;
+        if (one.empty()) throw UsageError("--device '" + spec + "' has an empty entry");
+        const cl::DeviceInfo device = cl::select_device(one, all);
+        for (const cl::DeviceInfo& d : picked)
+            if (d.id == device.id) throw UsageError("--device '" + spec + "' names " + device.device_name + " twice");
+        picked.push_back(device);
+    }
+    return picked;
 }
 
 ExitCode run_render(const Options& options)
@@ -48,58 +90,156 @@ ExitCode run_render(const Options& options)
     // asked after those, before any device work. (Waiting for it there also keeps its
     // dlopen() from holding up the OpenCL driver's: both take the dynamic linker's lock.)
     check_output_location(output);
-    start_image_io_for(output, ImageAccess::Write);
+    if (options.partial) {
+        std::string ext = output.extension().string();
+        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (ext != ".exr")
+            throw UsageError("--samples writes a partial image, which is an OpenEXR file: name it .exr, not '" +
+                             output.string() + "'");
+    } else {
+        start_image_io_for(output, ImageAccess::Write);
+    }
     if (!options.render.env_map_path.empty()) start_image_io_for(options.render.env_map_path, ImageAccess::Read);
 
     RenderSettings settings = options.render;
     // Depth, normals and primitive ids are per-pixel facts: more samples add nothing.
-    if (settings.integrator == IntegratorKind::Aov && !options.spp_given) settings.spp = 1;
+    if (settings.integrator == IntegratorKind::Aov && !options.spp_given && !options.partial) settings.spp = 1;
+    const ChunkPlan plan = options.partial
+                               ? ChunkPlan::for_range(options.samples_first, options.samples_end, options.chunk_samples)
+                               : ChunkPlan::for_range(0, settings.spp, options.chunk_samples);
+    if (options.partial) settings.spp = plan.end_sample;
 
     PreparedScene prepared = prepare_scene(scene_request(options));
     if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
 
-    check_output_format(output);
-    const cl::DeviceInfo device = cl::select_device(options.device);
-    Session session(device, prepared, settings, render_setup_from_environment());
-    // The device holds its own copy of the scene and the BVH (a CPU device the wide BVH made
-    // from it): for the rest of the render they are dead weight, 85 bytes per triangle for
-    // the flat BVH alone.
-    prepared = PreparedScene{};
-    const Renderer& renderer = session.renderer();
-    log_verbose("device " + device.device_name + " (" + device.platform_name + "); kernels " +
-                (renderer.program().from_cache() ? "loaded from cache" : "compiled") + " in " +
-                fixed(renderer.program().build_seconds(), 3) + " s; scene uses " +
-                std::to_string(renderer.device_scene().bytes() / 1024) + " KiB on the device");
+    if (!options.partial) check_output_format(output);
+    const std::vector<cl::DeviceInfo> devices = select_devices(options.device);
 
     install_interrupt_handler();
+    // A partial render is a farm's task: SIGTERM (preemption, scancel) stops it like Ctrl-C,
+    // and an interrupted partial render writes nothing.
+    if (options.partial) install_termination_handler();
     ProgressBar::Options progress_options;
     progress_options.quiet = options.quiet;
     progress_options.unit = "spp";
-    ProgressBar progress("Rendering", settings.spp, progress_options);
-    RenderControl control;
+    ProgressBar progress("Rendering", plan.end_sample - plan.first_sample, progress_options);
+    FrameControl control;
     control.time_limit_seconds = settings.time_limit_seconds;
     control.cancelled = interrupt_requested;
-    control.on_pass = [&](std::uint32_t done) { progress.update(done); };
-    const RenderOutcome outcome = session.render(control);
-    progress.finish();
-    const double render_seconds = outcome.seconds;
+    control.on_progress = [&](std::uint64_t done) { progress.update(done); };
 
     ImageMetadata meta;
-    meta.device = device.device_name + " (" + device.platform_name + ")";
     meta.integrator = integrator_name(settings.integrator);
     if (settings.integrator == IntegratorKind::Aov) meta.integrator += std::string(":") + aov_name(settings.aov);
     meta.scene = options.scene_path;
-    meta.spp = renderer.samples_done();
-    meta.seconds = render_seconds;
     meta.seed = settings.seed;
-    write_image(output, renderer.film(), meta);
 
+    FrameOutcome outcome;
+    std::uint32_t samples = 0;
+    const RenderSetup setup = render_setup_from_environment();
+    if (options.partial) {
+        PartialImage part;
+        part.width = std::uint32_t(settings.width);
+        part.height = std::uint32_t(settings.height);
+        part.scene_hash = hash_text(scene_content_hash(prepared.scene));
+        part.options_hash = hash_text(render_options_hash(settings, prepared.camera, plan.chunk_samples));
+        part.seed = settings.seed;
+        part.chunk_samples = plan.chunk_samples;
+        part.first_sample = plan.first_sample;
+        part.end_sample = plan.end_sample;
+        part.integrator = meta.integrator;
+        part.scene = meta.scene;
+        std::map<std::uint32_t, PartialChunk> chunks;
+        outcome = render_chunks(devices, prepared, settings, setup, plan, control,
+                                [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
+                                    if (!complete) return;
+                                    sums.squares.clear();  // not kept in partial images
+                                    chunks[range.index] = PartialChunk{range, std::move(sums)};
+                                });
+        progress.finish();
+        if (outcome.cancelled) {
+            log_info("interrupted: no partial image written (" + std::to_string(chunks.size()) + " of " +
+                     std::to_string(plan.chunk_count()) + " chunks were done)");
+            return ExitCode::Interrupted;
+        }
+        for (auto& [index, chunk] : chunks) {
+            samples += chunk.range.count;
+            part.chunks.push_back(std::move(chunk));
+        }
+        part.device = device_names(outcome, false);
+        if (part.chunks.empty()) throw DeviceError("the time limit ended the render before any chunk was complete");
+        write_partial_image(output, part);
+    } else {
+        FrameResult frame = render_frame(devices, prepared, settings, setup, plan, control);
+        progress.finish();
+        outcome = frame.outcome;
+        samples = frame.end_sample;
+        meta.device = device_names(outcome, devices.size() == 1);
+        meta.spp = samples;
+        meta.seconds = outcome.seconds;
+        if (frame.sums.width == 0) {
+            frame.sums.width = std::uint32_t(settings.width);
+            frame.sums.height = std::uint32_t(settings.height);
+            frame.sums.sums.assign(std::size_t(settings.width) * settings.height, glm::vec4(0.0f));
+        }
+        write_image(output, mean_film(frame.sums), meta);
+    }
+    prepared = PreparedScene{};
+
+    for (const DeviceReport& d : outcome.devices)
+        log_verbose("device " + d.name + ": " + std::to_string(d.chunks) + " chunks (" + std::to_string(d.backups) +
+                    " backups), " + std::to_string(d.samples) + " spp rendered, set up in " + fixed(d.setup_seconds, 3) +
+                    " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
+                    (d.failure.empty() ? "" : ", failed: " + d.failure));
+    const double render_seconds = outcome.seconds;
     const double samples_per_second =
-        static_cast<double>(settings.width) * settings.height * renderer.samples_done() / std::max(render_seconds, 1e-9);
-    log_info("wrote " + output.string() + " (" + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-             ", " + std::to_string(renderer.samples_done()) + " spp, " + fixed(render_seconds, 2) + " s, " +
-             fixed(samples_per_second / 1e6, 2) + " Msamples/s on " + device.device_name + ")");
+        static_cast<double>(settings.width) * settings.height * samples / std::max(render_seconds, 1e-9);
+    log_info("wrote " + output.string() + (options.partial ? " (partial, " : " (") + std::to_string(settings.width) +
+             "x" + std::to_string(settings.height) + ", " + std::to_string(samples) + " spp, " +
+             fixed(render_seconds, 2) + " s, " + fixed(samples_per_second / 1e6, 2) + " Msamples/s on " +
+             std::to_string(devices.size()) + (devices.size() == 1 ? " device" : " devices") + ")");
     return outcome.cancelled ? ExitCode::Interrupted : ExitCode::Ok;
+}
+
+ExitCode run_merge(const std::vector<std::string>& args)
+{
+    std::vector<std::filesystem::path> inputs;
+    std::filesystem::path output;
+    std::optional<std::uint32_t> spp;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= args.size()) throw UsageError("merge: " + arg + " needs a value");
+            return args[++i];
+        };
+        if (arg == "-o" || arg == "--output") output = value();
+        else if (arg == "--spp") {
+            const std::string v = value();
+            if (v.empty() || v.size() > 9 || v.find_first_not_of("0123456789") != std::string::npos || std::stoul(v) == 0)
+                throw UsageError("merge: --spp expects a positive number of samples, not '" + v + "'");
+            spp = static_cast<std::uint32_t>(std::stoul(v));
+        } else if (arg == "-q" || arg == "--quiet") set_log_level(LogLevel::Quiet);
+        else if (!arg.empty() && arg[0] == '-') throw UsageError("merge: unknown option '" + arg + "'");
+        else inputs.emplace_back(arg);
+    }
+    if (inputs.empty()) throw UsageError("merge: no partial images given");
+    if (output.empty()) throw UsageError("merge: no output given (-o FRAME.exr)");
+    for (const auto& in : inputs)
+        if (std::filesystem::weakly_canonical(in) == std::filesystem::weakly_canonical(output))
+            throw UsageError("merge: the output '" + output.string() + "' is also an input");
+    start_image_io_for(output, ImageAccess::Write);
+    check_output_path(output);
+    const MergedFrame merged = merge_partial_images(inputs, spp);
+    ImageMetadata meta;
+    for (const std::string& d : merged.devices) meta.device += (meta.device.empty() ? "" : "; ") + d;
+    meta.integrator = merged.first.integrator;
+    meta.scene = merged.first.scene;
+    meta.spp = merged.spp;
+    meta.seed = merged.first.seed;
+    write_image(output, mean_film(merged.sums), meta);
+    log_info("wrote " + output.string() + " (" + std::to_string(merged.spp) + " spp from " +
+             std::to_string(inputs.size()) + " partial images)");
+    return ExitCode::Ok;
 }
 
 }  // namespace gc

@@ -140,15 +140,17 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     return samples;
 }
 
-FilmSums Renderer::sums() const
+FilmSums Renderer::sums(bool with_squares) const
 {
     FilmSums out;
     out.width = m_params.width;
     out.height = m_params.height;
     out.sums.resize(m_film.sums.count());
-    out.squares.resize(m_film.squares.count());
     m_film.sums.read(out.sums);
-    m_film.squares.read(out.squares);
+    if (with_squares) {
+        out.squares.resize(m_film.squares.count());
+        m_film.squares.read(out.squares);
+    }
     out.sample_counts.assign(out.sums.size(), m_sample_count);
     return out;
 }

@@ -99,7 +99,9 @@ public:
     // what a Z-test against a reference needs. Path integrator only; zero elsewhere.
     Film variance() const;
     // The film's sums and sample counts, which add up across renders of disjoint ranges.
-    FilmSums sums() const;
+    // Without `with_squares`, `squares` stays empty (half the read-back: the multi-device
+    // scheduler's chunks).
+    FilmSums sums(bool with_squares = true) const;
 
 private:
     // Restarts the film and rebuilds what a scene update made stale.

@@ -16,6 +16,7 @@ enum class ExitCode : int {
     Device = 4,      // no usable device, or an OpenCL / Vulkan failure
     Output = 5,      // the output image could not be written
     Mismatch = 6,    // a cross-check or consistency run found images that disagree
+    Incomplete = 7,  // merge: partial images that overlap or leave samples missing
     Interrupted = 130,
 };
 
@@ -43,6 +44,12 @@ public:
 class OutputError : public Error {
 public:
     explicit OutputError(const std::string& message) : Error(ExitCode::Output, message) {}
+};
+
+// Partial images that do not add up to a frame: a chunk in two files, or samples missing.
+class IncompleteError : public Error {
+public:
+    explicit IncompleteError(const std::string& message) : Error(ExitCode::Incomplete, message) {}
 };
 
 class UsageError : public Error {

@@ -26,7 +26,7 @@ from . import _geocold
 __all__ = [
     "Error", "SceneError", "DeviceError", "OutputError", "ArgumentError",
     "Device", "devices", "load", "Scene", "Material", "Materials", "Camera", "Params",
-    "Renderer", "Sums", "write", "read", "INTEGRATORS", "AOVS", "__version__",
+    "Renderer", "Sums", "render_frame", "write", "read", "INTEGRATORS", "AOVS", "__version__",
 ]
 __version__ = "0.1.0"
 
@@ -494,6 +494,50 @@ class Renderer:
         i = self._core.info()
         return (f"Renderer({self._scene.path!r}, {self._integrator}, {i['width']}x{i['height']}, "
                 f"{self.sample_count} spp, {i['device']!r})")
+
+
+def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64, *,
+                 samples: Optional[Tuple[int, int]] = None, chunk_samples: int = 64,
+                 integrator: str = "path", aov: Optional[str] = None, res: Tuple[int, int] = (512, 512),
+                 max_depth: int = 8, seed: int = 0, rr_depth: int = 5,
+                 env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
+                 time_limit: float = 0.0) -> Tuple[Any, int]:
+    """Renders one frame on several devices at once, as ``geocold-cl --device all``.
+
+    ``devices``: ``"all"``, or a list of device specs (as :class:`Renderer`'s ``device``). The
+    frame is cut into chunks of ``chunk_samples`` samples that the devices pull; the chunks
+    are added in chunk order, so devices of one kind give the bits of one device, and of the
+    CLI with the same ``--chunk-samples``. ``samples=(a, b)``: only samples [a, b) (``a`` a
+    multiple of ``chunk_samples``), like ``--samples a:b``. Returns ``(image, spp)``: the mean
+    (float32 (H, W, 4)) and the samples per pixel in it (fewer than asked when ``time_limit``
+    ended the frame). Ctrl-C raises ``KeyboardInterrupt``."""
+    if not isinstance(scene, Scene):
+        raise ArgumentError(f"render_frame: scene must be a geocold.Scene, not {type(scene).__name__}")
+    if isinstance(devices, str):
+        specs = [devices]
+    else:
+        specs = [str(d.index) if isinstance(d, Device) else str(d) for d in devices]
+    if aov is not None:
+        integrator = "aov"
+    if integrator not in INTEGRATORS:
+        raise ArgumentError(f"render_frame: integrator must be one of {', '.join(INTEGRATORS)}, not {integrator!r}")
+    aov = aov or "preview"
+    if aov not in AOVS:
+        raise ArgumentError(f"render_frame: aov must be one of {', '.join(AOVS)}, not {aov!r}")
+    try:
+        width, height = (int(v) for v in res)
+    except (TypeError, ValueError):
+        raise ArgumentError(f"render_frame: res must be (width, height), not {res!r}") from None
+    if isinstance(env, (int, float)):
+        env = (float(env),) * 3
+    env = _vec3(env, "render_frame: env")
+    first, end = (0, spp) if samples is None else samples
+    for name, value, low in (("spp", end, 1), ("chunk_samples", chunk_samples, 1), ("max_depth", max_depth, 1),
+                             ("seed", seed, 0), ("rr_depth", rr_depth, 0), ("first sample", first, 0)):
+        if isinstance(value, bool) or not isinstance(value, int) or not low <= value < 2 ** 32:
+            raise ArgumentError(f"render_frame: {name} must be an integer in [{low}, 2^32), not {value!r}")
+    return _geocold.render_frame(scene._core, specs, integrator, aov, width, height, first, end, chunk_samples,
+                                 seed, max_depth, rr_depth, env, env_map or "", float(time_limit))
 
 
 _META_KEYS = ("device", "integrator", "scene", "spp", "seconds", "seed")

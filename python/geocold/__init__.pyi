@@ -1,7 +1,7 @@
 """geocold: the geocold-cl path tracer from Python (see __init__.py for the documentation)."""
 
 import os
-from typing import Any, Callable, Dict, Iterator, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -129,6 +129,13 @@ class Renderer:
     @property
     def info(self) -> Dict[str, Any]: ...
     def metadata(self) -> Dict[str, Any]: ...
+
+def render_frame(scene: Scene, devices: Union[str, List[Union[str, int, Device]]] = ..., spp: int = ..., *,
+                 samples: Optional[Tuple[int, int]] = ..., chunk_samples: int = ..., integrator: str = ...,
+                 aov: Optional[str] = ..., res: Tuple[int, int] = ..., max_depth: int = ..., seed: int = ...,
+                 rr_depth: int = ..., env: Union[float, Vec3] = ..., env_map: Optional[str] = ...,
+                 time_limit: float = ...) -> Tuple[Image, int]:
+    """One frame on several devices (chunks added in chunk order); returns (mean image, spp)."""
 
 def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ...) -> None:
     """Writes an (H, W, 3 or 4) linear image atomically (.exr, .png, .pfm, .ppm, ...); OutputError naming the file."""

@@ -24,6 +24,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -32,8 +33,10 @@
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
 #include "host/image/image_module.h"
+#include "host/render/chunks.h"
 #include "host/render/device_scene.h"
 #include "host/render/environment.h"
+#include "host/render/multi_device.h"
 #include "host/render/render_loop.h"
 #include "host/render/renderer.h"
 #include "host/render/session.h"
@@ -257,6 +260,91 @@ AovKind parse_aov(const std::string& text)
 }
 
 // gc.Renderer: a context on one device, the scene uploaded to it, a Renderer over it.
+// One frame on several devices at once (host/render/multi_device.h): chunks of chunk_samples
+// samples, added in chunk order, so devices of one kind give the bits of one. Returns the mean
+// of samples [first, end) (or of the prefix a time limit left) and its sample count. The
+// frame runs on its own thread while this one, holding the GIL now and then, watches for
+// Ctrl-C (Python sees signals only on the main thread).
+std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState> state,
+                                                      const std::vector<std::string>& device_specs,
+                                                      const std::string& integrator, const std::string& aov, int width,
+                                                      int height, std::uint32_t first, std::uint32_t end,
+                                                      std::uint32_t chunk_samples, std::uint32_t seed,
+                                                      std::uint32_t max_depth, std::uint32_t rr_depth,
+                                                      const Vec3Tuple& env, const std::string& env_map, double time_limit)
+{
+    if (width < 1 || height < 1 || width > 65536 || height > 65536)
+        throw UsageError("res must be two sizes in [1, 65536]");
+    if (max_depth < 1) throw UsageError("max_depth must be at least 1");
+    if (time_limit < 0.0 || !std::isfinite(time_limit))
+        throw UsageError("time_limit must be a non-negative number of seconds");
+    if (device_specs.empty()) throw UsageError("devices must name at least one device");
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.integrator = parse_integrator(integrator);
+    settings.aov = parse_aov(aov);
+    settings.spp = end;
+    settings.seed = seed;
+    settings.max_depth = max_depth;
+    settings.rr_depth = rr_depth;
+    settings.env_radiance = colour("env", env, false);
+    settings.env_map_path = env_map;
+    const ChunkPlan plan = ChunkPlan::for_range(first, end, chunk_samples);
+    const RenderSetup setup = python_render_setup();
+
+    std::vector<cl::DeviceInfo> devices;
+    {
+        nb::gil_scoped_release release;
+        if (device_specs.size() == 1 && device_specs[0] == "all") {
+            std::string why;
+            devices = cl::list_devices(&why);
+            if (devices.empty()) throw DeviceError("no OpenCL device found: " + why);
+        } else {
+            for (const std::string& spec : device_specs) devices.push_back(cl::select_device(spec));
+        }
+    }
+    std::atomic<bool> stop{false};
+    std::atomic<bool> done{false};
+    FrameResult result;
+    std::exception_ptr error;
+    FrameControl control;
+    control.time_limit_seconds = time_limit;
+    control.cancelled = [&] { return stop.load(); };
+    bool interrupted = false;
+    {
+        std::thread frame([&] {
+            try {
+                const std::lock_guard<std::mutex> lock(state->mutex);
+                result = render_frame(devices, state->prepared, settings, setup, plan, control);
+            } catch (...) {
+                error = std::current_exception();
+            }
+            done = true;
+        });
+        while (!done) {
+            {
+                nb::gil_scoped_release release;
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            }
+            if (!interrupted && PyErr_CheckSignals() != 0) {
+                interrupted = true;
+                stop = true;
+            }
+        }
+        frame.join();
+    }
+    if (interrupted) throw nb::python_error();  // the KeyboardInterrupt PyErr_CheckSignals raised
+    if (error) std::rethrow_exception(error);
+    if (result.sums.width == 0) {
+        result.sums.width = std::uint32_t(width);
+        result.sums.height = std::uint32_t(height);
+        result.sums.sums.assign(std::size_t(width) * height, glm::vec4(0.0f));
+    }
+    Film mean = mean_film(result.sums);
+    return {film_array(std::move(mean)), result.end_sample - first};
+}
+
 class PyRenderer {
 public:
     PyRenderer(std::shared_ptr<SceneState> scene, const std::string& device, const std::string& integrator,
@@ -553,6 +641,9 @@ NB_MODULE(_geocold, m)
     m.def("write", &write_file, "path"_a, "image"_a, "device"_a, "integrator"_a, "scene"_a, "spp"_a, "seconds"_a, "seed"_a);
     m.def("read", &read_file, "path"_a);
     m.def("cli_main", &cli_main, "args"_a);
+    m.def("render_frame", &render_frame_on, "scene"_a, "devices"_a, "integrator"_a, "aov"_a, "width"_a, "height"_a,
+          "first"_a, "end"_a, "chunk_samples"_a, "seed"_a, "max_depth"_a, "rr_depth"_a, "env"_a, "env_map"_a,
+          "time_limit"_a);
     m.def("has_oiio", [] { return gc::image_io_has_oiio(); });
 
     nb::class_<SceneState>(m, "SceneState")

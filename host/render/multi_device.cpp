@@ -1,0 +1,305 @@
+#include "host/render/multi_device.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "host/render/pass_planner.h"
+#include "host/util/error.h"
+#include "host/util/log.h"
+
+namespace gc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+// What every device's thread shares. Chunks are named by their number n in the plan.
+struct Shared {
+    Shared(const ChunkPlan& plan_, std::size_t devices)
+        : plan(plan_), finished(plan_.chunk_count()), progress(devices), seconds_per_sample(devices)
+    {
+        for (std::uint32_t n = 0; n < plan.chunk_count(); ++n) todo.push_back(n);
+        for (auto& p : progress) p = 0;
+        for (auto& s : seconds_per_sample) s = 0.0;
+        reserved.resize(devices);
+    }
+
+    const ChunkPlan plan;
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::deque<std::uint32_t> todo;                       // not yet taken, in order
+    std::vector<std::deque<std::uint32_t>> reserved;      // taken by a device, not yet started
+    std::map<std::uint32_t, std::set<std::size_t>> running;  // started, by which devices
+    std::vector<std::atomic<bool>> finished;              // delivered (a copy still running stops)
+    std::uint32_t finished_count = 0;
+    std::vector<std::atomic<std::uint32_t>> progress;     // samples of its current chunk, per device
+    std::vector<std::atomic<double>> seconds_per_sample;  // per device, 0 = not known yet
+    std::atomic<bool> stop{false};
+    bool cancelled = false;
+    bool timed_out = false;
+    std::size_t live = 0;
+    std::optional<Clock::time_point> start;  // the first device ready
+    std::atomic<std::uint64_t> complete_samples{0};
+
+    std::mutex sink_mutex;      // one sink call at a time
+    std::mutex progress_mutex;  // one on_progress call at a time
+};
+
+}  // namespace
+
+std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count)
+{
+    if (!is_gpu || chunks_left == 0) return 1;
+    const std::uint32_t share = chunks_left / std::max(1u, device_count);
+    return std::clamp(share / 4, 1u, 8u);
+}
+
+FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
+                           const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
+                           const FrameControl& control, const ChunkSink& sink)
+{
+    if (devices.empty()) throw UsageError("no device to render on");
+    Shared shared(plan, devices.size());
+    shared.live = devices.size();
+    FrameOutcome outcome;
+    outcome.devices.resize(devices.size());
+    std::vector<std::exception_ptr> errors(devices.size());
+    const auto called = Clock::now();
+
+    const auto report_progress = [&] {
+        if (!control.on_progress) return;
+        std::uint64_t done = shared.complete_samples.load();
+        for (const auto& p : shared.progress) done += p.load();
+        std::lock_guard lock(shared.progress_mutex);
+        control.on_progress(std::min<std::uint64_t>(done, plan.end_sample - plan.first_sample));
+    };
+
+    const auto worker = [&](std::size_t me) {
+        const cl::DeviceInfo& device = devices[me];
+        DeviceReport& report = outcome.devices[me];
+        report.name = device.device_name + " (" + device.platform_name + ")";
+        report.is_gpu = device.is_gpu;
+        std::vector<std::uint32_t> mine;  // chunks this device holds in `running`
+        try {
+            const auto setup_start = Clock::now();
+            Session session(device, prepared, settings, setup);
+            Renderer& renderer = session.renderer();
+            report.setup_seconds = seconds_between(setup_start, Clock::now());
+            Clock::time_point start;
+            {
+                std::lock_guard lock(shared.mutex);
+                if (!shared.start) shared.start = Clock::now();
+                start = *shared.start;
+            }
+            const auto elapsed = [&] { return seconds_between(start, Clock::now()); };
+            const bool limited = control.time_limit_seconds > 0.0;
+
+            for (;;) {
+                std::uint32_t n = 0;
+                bool backup = false;
+                {
+                    std::unique_lock lock(shared.mutex);
+                    for (;;) {
+                        if (shared.stop) return;
+                        auto& own = shared.reserved[me];
+                        if (own.empty() && !shared.todo.empty()) {
+                            const std::uint32_t want = ask_size(device.is_gpu, std::uint32_t(shared.todo.size()),
+                                                                std::uint32_t(shared.live));
+                            for (std::uint32_t i = 0; i < want && !shared.todo.empty(); ++i) {
+                                own.push_back(shared.todo.front());
+                                shared.todo.pop_front();
+                            }
+                        }
+                        if (own.empty()) {
+                            // Take a chunk another device reserved and has not started.
+                            for (auto& other : shared.reserved)
+                                if (other.size() > 0 && &other != &own) {
+                                    own.push_back(other.back());
+                                    other.pop_back();
+                                    break;
+                                }
+                        }
+                        if (!own.empty()) {
+                            n = own.front();
+                            own.pop_front();
+                            break;
+                        }
+                        // Nothing left to take: back up the running chunk that its holder
+                        // will finish last, if this device expects to finish it sooner.
+                        const double mine_spp = shared.seconds_per_sample[me].load();
+                        double best_gain = 0.0;
+                        std::optional<std::uint32_t> pick;
+                        for (const auto& [chunk, holders] : shared.running) {
+                            if (holders.size() != 1 || holders.count(me)) continue;
+                            const std::size_t holder = *holders.begin();
+                            const double their = shared.seconds_per_sample[holder].load();
+                            if (their <= 0.0 || mine_spp <= 0.0) continue;
+                            const std::uint32_t count = plan.chunk(chunk).count;
+                            const double left = their * (count - std::min(count, shared.progress[holder].load()));
+                            const double gain = left - mine_spp * count;
+                            if (gain > 0.25 * left && gain > best_gain) {
+                                best_gain = gain;
+                                pick = chunk;
+                            }
+                        }
+                        if (pick) {
+                            n = *pick;
+                            backup = true;
+                            break;
+                        }
+                        if (shared.running.empty() && shared.todo.empty()) {
+                            bool any_reserved = false;
+                            for (const auto& r : shared.reserved) any_reserved = any_reserved || !r.empty();
+                            if (!any_reserved) return;  // the plan is done
+                        }
+                        shared.changed.wait_for(lock, std::chrono::milliseconds(20));
+                    }
+                    shared.running[n].insert(me);
+                    mine.push_back(n);
+                }
+
+                const ChunkRange range = plan.chunk(n);
+                const auto chunk_start = Clock::now();
+                renderer.clear(range.first);
+                std::uint32_t done = 0;
+                bool abandoned = false;
+                bool stopped = false;
+                while (done < range.count) {
+                    if (shared.finished[n].load() || shared.stop.load()) {
+                        abandoned = shared.finished[n].load();
+                        stopped = !abandoned;
+                        break;
+                    }
+                    std::uint32_t wanted = range.count - done;
+                    if (limited)
+                        wanted = samples_before_deadline(control.time_limit_seconds - elapsed(),
+                                                         renderer.seconds_per_sample(), wanted);
+                    done += renderer.render_samples(wanted);
+                    shared.progress[me] = done;
+                    report_progress();
+                    const bool cancel = control.cancelled && control.cancelled();
+                    const bool late = limited && elapsed() >= control.time_limit_seconds && done < range.count;
+                    if (cancel || late) {
+                        std::lock_guard lock(shared.mutex);
+                        if (cancel) shared.cancelled = true;
+                        if (late && !cancel) shared.timed_out = true;
+                        shared.stop = true;
+                        shared.changed.notify_all();
+                        stopped = done < range.count;
+                        if (stopped) break;
+                    }
+                }
+                const double chunk_seconds = seconds_between(chunk_start, Clock::now());
+                report.busy_seconds += chunk_seconds;
+                report.samples += done;
+                if (done > 0 && report.busy_seconds > 0)
+                    shared.seconds_per_sample[me] = report.busy_seconds / double(report.samples);
+                shared.progress[me] = 0;
+
+                bool deliver = false;
+                bool truncated = false;
+                {
+                    std::lock_guard lock(shared.mutex);
+                    shared.running[n].erase(me);
+                    if (shared.running[n].empty()) shared.running.erase(n);
+                    mine.erase(std::find(mine.begin(), mine.end(), n));
+                    if (!abandoned && done == range.count && !shared.finished[n]) {
+                        shared.finished[n] = true;
+                        ++shared.finished_count;
+                        deliver = true;
+                    } else if (stopped && done > 0 && !shared.finished[n]) {
+                        truncated = true;
+                    }
+                    shared.changed.notify_all();
+                }
+                if (deliver) {
+                    ++report.chunks;
+                    if (backup) ++report.backups;
+                    report.finished_at = seconds_between(start, Clock::now());
+                    shared.complete_samples += range.count;
+                    FilmSums sums = renderer.sums(/*with_squares=*/false);
+                    std::lock_guard lock(shared.sink_mutex);
+                    sink(range, std::move(sums), true);
+                } else if (truncated) {
+                    ChunkRange cut = range;
+                    cut.count = done;
+                    FilmSums sums = renderer.sums(/*with_squares=*/false);
+                    std::lock_guard lock(shared.sink_mutex);
+                    sink(cut, std::move(sums), false);
+                }
+                if (stopped) return;
+            }
+        } catch (...) {
+            errors[me] = std::current_exception();
+            try {
+                std::rethrow_exception(errors[me]);
+            } catch (const std::exception& e) {
+                report.failure = e.what();
+            } catch (...) {
+                report.failure = "unknown error";
+            }
+            std::lock_guard lock(shared.mutex);
+            // Its chunks go back to the queue, in order.
+            std::vector<std::uint32_t> back(shared.reserved[me].begin(), shared.reserved[me].end());
+            shared.reserved[me].clear();
+            for (std::uint32_t n : mine) {
+                shared.running[n].erase(me);
+                if (shared.running[n].empty()) {
+                    shared.running.erase(n);
+                    if (!shared.finished[n]) back.push_back(n);
+                }
+            }
+            std::sort(back.begin(), back.end());
+            for (auto it = back.rbegin(); it != back.rend(); ++it) shared.todo.push_front(*it);
+            --shared.live;
+            shared.changed.notify_all();
+        }
+    };
+
+    std::vector<std::thread> threads;
+    threads.reserve(devices.size());
+    for (std::size_t i = 0; i < devices.size(); ++i) threads.emplace_back(worker, i);
+    for (auto& t : threads) t.join();
+
+    outcome.cancelled = shared.cancelled;
+    outcome.timed_out = shared.timed_out;
+    outcome.seconds = shared.start ? seconds_between(*shared.start, Clock::now()) : seconds_between(called, Clock::now());
+    const bool stopped = shared.cancelled || shared.timed_out;
+    if (!stopped && shared.finished_count < plan.chunk_count()) {
+        for (const auto& e : errors)
+            if (e) std::rethrow_exception(e);
+        throw DeviceError("the frame ended with chunks missing and no device error (a bug)");
+    }
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        if (!outcome.devices[i].failure.empty())
+            log_warning("device " + outcome.devices[i].name + " dropped out of the frame: " + outcome.devices[i].failure);
+    return outcome;
+}
+
+FrameResult render_frame(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
+                         const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
+                         const FrameControl& control)
+{
+    FrameAccumulator frame(plan);
+    FrameResult result;
+    result.outcome = render_chunks(devices, prepared, settings, setup, plan, control,
+                                   [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
+                                       if (complete) frame.add(range, std::move(sums));
+                                       else frame.add_truncated(range, std::move(sums));
+                                   });
+    result.sums = frame.finish(&result.end_sample);
+    return result;
+}
+
+}  // namespace gc

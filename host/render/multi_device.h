@@ -1,0 +1,90 @@
+// One frame on several OpenCL devices of a machine: a pull-based queue of canonical chunks
+// (chunks.h), one host thread per device. Used by geocold-cl (--device all, --samples A:B) and
+// open to other front ends.
+//
+//     FrameResult frame = render_frame(devices, prepared, settings, setup,
+//                                      ChunkPlan::for_range(0, spp, 64), control);
+//     write_image("out.exr", mean_film(frame.sums), meta);
+//
+// Each device gets a Session of its own (context, device scene, renderer), built in its thread,
+// so the kernels of several devices compile at once. A device pulls the next chunks off the
+// queue (a GPU takes more at a time than a CPU, ask_size()), renders each from a cleared film
+// and hands its sums on. When the queue is empty, an idle device re-renders the chunk another
+// device has held longest, if it expects to finish it sooner (a backup, as MapReduce's backup
+// tasks): the first copy in wins and the other is abandoned at its next pass. On devices of one
+// kind the copies have the same bits; across kinds they agree within --consistency's tolerance,
+// which is then all a frame rendered on mixed devices promises.
+//
+// A device that fails (its driver, its memory) drops out with a warning; its chunks go back to
+// the queue. The frame fails only when no device is left.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "host/cl/device.h"
+#include "host/render/chunks.h"
+#include "host/render/render_settings.h"
+#include "host/render/render_setup.h"
+#include "host/render/session.h"
+
+namespace gc {
+
+struct FrameControl {
+    double time_limit_seconds = 0.0;  // from the start of rendering (after the kernels are built); 0: none
+    std::function<bool()> cancelled;  // asked between passes; true stops every device
+    // Called (from any device's thread, one call at a time) after each pass with the samples
+    // per pixel finished so far over the whole plan (complete chunks and chunks in flight).
+    std::function<void(std::uint64_t samples_done)> on_progress;
+};
+
+struct DeviceReport {
+    std::string name;           // "<device> (<platform>)"
+    bool is_gpu = false;
+    std::uint32_t chunks = 0;   // chunks it delivered first
+    std::uint32_t backups = 0;  // of those, backups of a chunk another device held
+    std::uint64_t samples = 0;  // samples per pixel it rendered (including abandoned work)
+    double setup_seconds = 0;   // upload and kernel build
+    double busy_seconds = 0;    // rendering
+    double finished_at = 0;     // seconds from the frame's start to the device's last chunk
+    std::string failure;        // why it dropped out; empty if it did not
+};
+
+struct FrameOutcome {
+    bool cancelled = false;
+    bool timed_out = false;
+    double seconds = 0.0;  // from the start of rendering to the last chunk
+    std::vector<DeviceReport> devices;
+};
+
+// Called from the devices' threads, one call at a time, for each chunk as it completes (its
+// sums and sample counts; no squares: they would double the read-back); and,
+// at a cancel or a deadline, for each chunk in flight with the samples it got (complete = false,
+// range.count cut to them; never for a chunk with none).
+using ChunkSink = std::function<void(const ChunkRange& range, FilmSums&& sums, bool complete)>;
+
+// How many chunks a device asks for at a time: 1 for a CPU; for a GPU, a quarter of its fair
+// share of what is left, at most 8.
+std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count);
+
+// Renders every chunk of `plan` (until `control` stops it) on `devices`, handing each to
+// `sink`. Throws the first device's error when every device failed.
+FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
+                           const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
+                           const FrameControl& control, const ChunkSink& sink);
+
+struct FrameResult {
+    FilmSums sums;               // the frame: chunks added in chunk order
+    std::uint32_t end_sample = 0;  // the frame holds samples [plan.first_sample, end_sample)
+    FrameOutcome outcome;
+};
+
+// render_chunks, with the chunks added into the frame in chunk order. After a cancel or a
+// deadline the frame holds the longest prefix of the plan that was rendered.
+FrameResult render_frame(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
+                         const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
+                         const FrameControl& control);
+
+}  // namespace gc

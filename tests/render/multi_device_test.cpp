@@ -1,0 +1,167 @@
+// One frame on several devices (host/render/multi_device.h): sample ranges rendered apart and
+// added in chunk order have the bits of the one-call frame; N devices of one kind have the bits
+// of one; a frame of one chunk has the bits of a plain Renderer::render. Devices of one kind:
+// every device of the first device's name and platform (POCL_DEVICES="pthread pthread" gives
+// two), else the same device twice (two contexts, two threads: the scheduler is the same).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <map>
+
+#include "host/render/multi_device.h"
+#include "host/render/session.h"
+#include "host/util/error.h"
+#include "tests/cl/cl_test_util.h"
+
+namespace gc {
+namespace {
+
+namespace fs = std::filesystem;
+
+SceneRequest cornell_box()
+{
+    SceneRequest request;
+    request.path = fs::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Original.obj";
+    return request;
+}
+
+RenderSettings small_path()
+{
+    RenderSettings s;
+    s.width = 24;
+    s.height = 20;
+    s.max_depth = 5;
+    s.samples_per_pass = 3;  // several passes per chunk, cut across chunk ends
+    return s;
+}
+
+bool same_bits(const FilmSums& a, const FilmSums& b)
+{
+    return a.sums.size() == b.sums.size() &&
+           std::memcmp(a.sums.data(), b.sums.data(), a.sums.size() * sizeof(glm::vec4)) == 0 &&
+           a.sample_counts == b.sample_counts;
+}
+
+class MultiDeviceTest : public cl::test::DeviceTest {
+protected:
+    void SetUp() override
+    {
+        cl::test::DeviceTest::SetUp();
+        if (IsSkipped()) return;
+        prepared = prepare_scene(cornell_box());
+        const cl::DeviceInfo& first = context->device();
+        for (const cl::DeviceInfo& d : devices)
+            if (d.device_name == first.device_name && d.platform_name == first.platform_name) same_kind.push_back(d);
+        if (same_kind.size() < 2) same_kind = {first, first};
+    }
+
+    FilmSums frame(const std::vector<cl::DeviceInfo>& on, const ChunkPlan& plan, FrameOutcome* outcome = nullptr)
+    {
+        FrameResult r = render_frame(on, prepared, small_path(), {}, plan, {});
+        EXPECT_EQ(r.end_sample, plan.end_sample);
+        if (outcome) *outcome = r.outcome;
+        return std::move(r.sums);
+    }
+
+    PreparedScene prepared;
+    std::vector<cl::DeviceInfo> same_kind;
+};
+
+TEST_F(MultiDeviceTest, OneChunkIsThePlainRender)
+{
+    Renderer renderer(*context, prepared.scene, prepared.bvh, prepared.camera, small_path());
+    renderer.render(0, 10);
+    const FilmSums one = frame({context->device()}, ChunkPlan::for_range(0, 10, 16));
+    EXPECT_TRUE(same_bits(one, renderer.sums()));
+    EXPECT_EQ(mean_film(one), renderer.film());
+}
+
+TEST_F(MultiDeviceTest, SplitRangesAddUpToTheFrame)
+{
+    const cl::DeviceInfo device = context->device();
+    const FilmSums whole = frame({device}, ChunkPlan::for_range(0, 40, 8));
+
+    // The same frame from three ranges rendered apart, chunks kept, added in chunk order.
+    const ChunkPlan plan = ChunkPlan::for_range(0, 40, 8);
+    FrameAccumulator parts(plan);
+    for (auto [a, b] : {std::pair{24u, 40u}, std::pair{0u, 8u}, std::pair{8u, 24u}})
+        render_chunks({device}, prepared, small_path(), {}, ChunkPlan::for_range(a, b, 8), {},
+                      [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
+                          ASSERT_TRUE(complete);
+                          parts.add(range, std::move(sums));
+                      });
+    std::uint32_t end = 0;
+    EXPECT_TRUE(same_bits(parts.finish(&end), whole));
+    EXPECT_EQ(end, 40u);
+
+    // A split differs from the sequential sum of one render over the same samples only by
+    // rounding: the test would see a wrong grouping.
+    Renderer renderer(*context, prepared.scene, prepared.bvh, prepared.camera, small_path());
+    renderer.render(0, 40);
+    EXPECT_FALSE(same_bits(renderer.sums(), whole));
+}
+
+TEST_F(MultiDeviceTest, SeveralDevicesOfOneKindGiveTheBitsOfOne)
+{
+    const ChunkPlan plan = ChunkPlan::for_range(0, 45, 4);
+    const FilmSums one = frame({same_kind[0]}, plan);
+    FrameOutcome outcome;
+    const FilmSums two = frame(same_kind, plan, &outcome);
+    EXPECT_TRUE(same_bits(one, two));
+    std::uint32_t chunks = 0;
+    for (const DeviceReport& d : outcome.devices) {
+        std::printf("  %s: %u chunks (%u backups), %llu spp, busy %.3f s\n", d.name.c_str(), d.chunks, d.backups,
+                    static_cast<unsigned long long>(d.samples), d.busy_seconds);
+        chunks += d.chunks;
+        EXPECT_TRUE(d.failure.empty()) << d.failure;
+    }
+    EXPECT_EQ(chunks, plan.chunk_count());
+    const std::vector<cl::DeviceInfo> three = {same_kind[0], same_kind[1], same_kind[0]};
+    EXPECT_TRUE(same_bits(one, frame(three, plan)));
+}
+
+TEST_F(MultiDeviceTest, ADeadlineKeepsTheLongestPrefix)
+{
+    RenderSettings settings = small_path();
+    FrameControl control;
+    int passes = 0;
+    control.cancelled = [&] { return ++passes >= 5; };
+    const ChunkPlan plan = ChunkPlan::for_range(0, 400, 4);
+    const FrameResult cut = render_frame({context->device()}, prepared, settings, {}, plan, control);
+    EXPECT_TRUE(cut.outcome.cancelled);
+    ASSERT_GT(cut.end_sample, 0u);
+    ASSERT_LT(cut.end_sample, 400u);
+    // The cut frame is the frame of that many samples.
+    EXPECT_TRUE(same_bits(cut.sums, frame({context->device()}, ChunkPlan::for_range(0, cut.end_sample, 4))));
+}
+
+TEST_F(MultiDeviceTest, AFailingDeviceDropsOutAndTheOthersFinishTheFrame)
+{
+    cl::DeviceInfo broken = context->device();
+    broken.id = nullptr;  // no such device: its context cannot be made
+    broken.device_name = "broken device";
+    const ChunkPlan plan = ChunkPlan::for_range(0, 24, 4);
+    FrameOutcome outcome;
+    const FilmSums with_broken = frame({broken, context->device()}, plan, &outcome);
+    EXPECT_TRUE(same_bits(with_broken, frame({context->device()}, plan)));
+    ASSERT_EQ(outcome.devices.size(), 2u);
+    EXPECT_FALSE(outcome.devices[0].failure.empty());
+    EXPECT_EQ(outcome.devices[0].chunks, 0u);
+    EXPECT_EQ(outcome.devices[1].chunks, plan.chunk_count());
+    std::printf("  broken device: %s\n", outcome.devices[0].failure.c_str());
+
+    // Every device broken: the frame fails with the device's error.
+    EXPECT_THROW(render_frame({broken}, prepared, small_path(), {}, plan, {}), Error);
+}
+
+TEST(AskSize, GpusTakeMoreThanCpus)
+{
+    EXPECT_EQ(ask_size(false, 100, 2), 1u);
+    EXPECT_EQ(ask_size(true, 100, 2), 8u);
+    EXPECT_EQ(ask_size(true, 10, 2), 1u);
+    EXPECT_EQ(ask_size(true, 0, 2), 1u);
+}
+
+}  // namespace
+}  // namespace gc
