@@ -111,6 +111,13 @@ Options parse_options(const std::vector<std::string>& args)
             o.render.spp = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxSpp));
             o.spp_given = true;
         }
+        else if (arg == "--tonemap") {
+            const std::string v = value();
+            o.tonemap = parse_tonemap(v);
+            if (!o.tonemap) bad_value(arg, v, tonemap_names());
+        }
+        else if (arg == "--exposure") o.exposure_ev = parse_float(arg, value());
+        else if (arg == "--denoise") o.denoise = true;
         else if (arg == "--seed") o.render.seed = static_cast<std::uint32_t>(parse_count(arg, value(), 0, 0xffffffffu));
         else if (arg == "--max-depth") o.render.max_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
         else if (arg == "--rr-depth") o.render.rr_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
@@ -180,6 +187,10 @@ Options parse_options(const std::vector<std::string>& args)
         else if (o.scene_path.empty()) o.scene_path = arg;
         else throw UsageError("more than one scene given ('" + o.scene_path + "' and '" + arg + "')");
     }
+    if (o.exposure_ev && o.tonemap == Tonemap::None)
+        throw UsageError("--exposure has no effect with --tonemap none (use --tonemap clamp)");
+    if (o.denoise && o.render.integrator == IntegratorKind::Aov)
+        throw UsageError("--denoise needs a rendered image (--integrator path or whitted), not an AOV");
     if (o.up && length(*o.up) == 0.0f) throw UsageError("--up must not be the zero vector");
     if (o.look_from && o.look_at && *o.look_from == *o.look_at)
         throw UsageError("--look-from and --look-at must differ");
@@ -232,6 +243,17 @@ Rendering:
                            many as fill half a second, growing to two in long renders, up
                            to 256; on GPUs as many as the wavefront holds); the image is
                            the same bits either way
+Display (8-bit outputs: .png, .ppm; .exr/.pfm/.hdr/.tif are always linear):
+      --tonemap NAME       pbr-neutral (default; Khronos PBR Neutral: base colours kept,
+                           highlights rolled off) | agx (Blender's AgX) | aces (Narkowicz's
+                           ACES fit) | clamp (clip at 1) | none (no exposure, clip at 1;
+                           the default for --aov outputs)
+      --exposure EV        scale by 2^EV before the curve (default 0)
+Denoising:
+      --denoise            denoise the image with Intel Open Image Denoise (CPU), guided
+                           by albedo and normal AOVs seen through mirrors and glass;
+                           needs libOpenImageDenoise.so.2 (tools/install-deps.sh installs
+                           it; GEOCOLD_OIDN_LIBRARY names it)
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
 Vulkan (when built with it):

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "host/image/display_transform.h"
 #include "host/math/affine.h"
 #include "host/render/render_settings.h"
 #include "host/render/session.h"
@@ -32,6 +33,9 @@ struct Options {
     std::string heatmap_dir;      // --heatmap DIR: a difference heat map per device pair
     bool res_given = false;       // --res / --width / --height given (consistency's default is 128x128)
     int threads = 0;              // --threads: CPU threads (host and PoCL); 0 = every core
+    std::optional<Tonemap> tonemap;   // --tonemap: 8-bit outputs' curve (default: pbr-neutral; none for AOVs)
+    std::optional<float> exposure_ev; // --exposure EV: 8-bit outputs are scaled by 2^EV first
+    bool denoise = false;         // --denoise: Open Image Denoise on the beauty, with albedo/normal guides
 
     RenderSettings render;
 

@@ -27,6 +27,21 @@ std::filesystem::path default_output(const std::string& scene_path)
     return std::filesystem::path(scene_path).stem().string() + ".png";
 }
 
+// The CLI's display transform: the options', else Khronos PBR Neutral for rendered images and
+// none for AOVs (their values are data: albedo, normals, depth, ids).
+DisplayTransform display_transform(const Options& options, const RenderSettings& settings,
+                                   const std::filesystem::path& output)
+{
+    DisplayTransform display;
+    display.tonemap = options.tonemap.value_or(settings.integrator == IntegratorKind::Aov ? Tonemap::None
+                                                                                         : Tonemap::PbrNeutral);
+    display.exposure_ev = options.exposure_ev.value_or(0.0f);
+    if ((options.tonemap || options.exposure_ev) && !is_display_referred(output))
+        log_warning(output.string() + " is a float format and is written linear: --tonemap and --exposure "
+                    "apply to 8-bit outputs (.png, .ppm)");
+    return display;
+}
+
 }  // namespace
 
 ExitCode run_list_devices()
@@ -92,7 +107,7 @@ ExitCode run_render(const Options& options)
     meta.spp = renderer.samples_done();
     meta.seconds = render_seconds;
     meta.seed = settings.seed;
-    write_image(output, renderer.film(), meta);
+    write_image(output, renderer.film(), meta, display_transform(options, settings, output));
 
     const double samples_per_second =
         static_cast<double>(settings.width) * settings.height * renderer.samples_done() / std::max(render_seconds, 1e-9);
