@@ -294,6 +294,9 @@ Environment:
                            built in (.exr, .hdr, .tif, reading .png; .pfm/.ppm and writing
                            .png need none). Default: geocold-image-oiio.so beside
                            geocold-cl, else ../lib/geocold-cl/geocold-image-oiio.so
+  GEOCOLD_OIDN_LIBRARY     Open Image Denoise for --denoise (default:
+                           /opt/geocold-cl/oidn/lib/libOpenImageDenoise.so.2, where
+                           tools/install-deps.sh puts it, else the system's)
 
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file

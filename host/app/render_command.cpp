@@ -7,7 +7,9 @@
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
 #include "host/cl/device.h"
+#include "host/image/denoise.h"
 #include "host/image/image_io.h"
+#include "host/render/denoise_guides.h"
 #include "host/render/session.h"
 #include "host/util/log.h"
 #include "host/util/progress.h"
@@ -70,6 +72,15 @@ ExitCode run_render(const Options& options)
     // Depth, normals and primitive ids are per-pixel facts: more samples add nothing.
     if (settings.integrator == IntegratorKind::Aov && !options.spp_given) settings.spp = 1;
 
+    // --denoise without the library fails here, before any rendering, and writes nothing.
+    DenoiseOptions denoise_options;
+    denoise_options.library = oidn_library_from_environment();
+    denoise_options.threads = options.threads;
+    if (options.denoise) {
+        std::string why;
+        if (!denoiser_available(denoise_options, &why)) throw DeviceError("--denoise: " + why);
+    }
+
     PreparedScene prepared = prepare_scene(scene_request(options));
     if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
 
@@ -107,7 +118,13 @@ ExitCode run_render(const Options& options)
     meta.spp = renderer.samples_done();
     meta.seconds = render_seconds;
     meta.seed = settings.seed;
-    write_image(output, renderer.film(), meta, display_transform(options, settings, output));
+    Film image = renderer.film();
+    if (options.denoise && renderer.samples_done() > 0) {
+        const DenoiseGuides guides = render_denoise_guides(renderer);
+        image = denoise(image, &guides.albedo, &guides.normal, denoise_options);
+        log_verbose("denoised with Open Image Denoise (albedo and normal guides)");
+    }
+    write_image(output, image, meta, display_transform(options, settings, output));
 
     const double samples_per_second =
         static_cast<double>(settings.width) * settings.height * renderer.samples_done() / std::max(render_seconds, 1e-9);

@@ -1,0 +1,32 @@
+#include "host/render/denoise_guides.h"
+
+#include <algorithm>
+
+namespace gc {
+namespace {
+
+Film render_aov(const Renderer& beauty, AovKind kind, std::uint32_t spp)
+{
+    RenderSettings settings = beauty.settings();
+    settings.integrator = IntegratorKind::Aov;
+    settings.aov = kind;
+    settings.spp = spp;
+    settings.time_limit_seconds = 0;
+    Renderer renderer(beauty.context(), beauty.shared_scene(), beauty.camera(), settings, beauty.setup());
+    renderer.render(0, spp);
+    return renderer.film();
+}
+
+}  // namespace
+
+DenoiseGuides render_denoise_guides(const Renderer& beauty)
+{
+    const std::uint32_t spp = std::max(k_guide_spp, beauty.samples_done());
+    DenoiseGuides guides;
+    guides.albedo = render_aov(beauty, AovKind::Albedo, spp);
+    // The normal AOV samples the pixel centre: one sample is all of it.
+    guides.normal = render_aov(beauty, AovKind::Normal, 1);
+    return guides;
+}
+
+}  // namespace gc
