@@ -69,7 +69,7 @@ IntegratorKind parse_integrator(const std::string& text)
 AovKind parse_aov(const std::string& text)
 {
     if (const auto kind = aov_from_name(text)) return *kind;
-    bad_value("--aov", text, "one of preview, albedo, normal, depth, primid");
+    bad_value("--aov", text, "one of preview, albedo, normal, depth, primid, guide-albedo, guide-normal");
 }
 
 }  // namespace
@@ -227,7 +227,8 @@ Rendering:
       --integrator NAME    path (default; unbiased path tracer with next-event estimation),
                            whitted (classic ray tracing), aov (first-hit outputs)
       --aov NAME           preview | albedo | normal | depth | primid   (implies
-                           --integrator aov)
+                           --integrator aov); guide-albedo | guide-normal: albedo and
+                           normal seen through mirrors and glass (--denoise's guides)
       --spp N              samples per pixel (default 64)
       --time-limit SEC     stop after the pass that crosses SEC seconds (whichever of
                            --spp and --time-limit ends first)

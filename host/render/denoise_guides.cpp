@@ -23,9 +23,8 @@ DenoiseGuides render_denoise_guides(const Renderer& beauty)
 {
     const std::uint32_t spp = std::max(k_guide_spp, beauty.samples_done());
     DenoiseGuides guides;
-    guides.albedo = render_aov(beauty, AovKind::Albedo, spp);
-    // The normal AOV samples the pixel centre: one sample is all of it.
-    guides.normal = render_aov(beauty, AovKind::Normal, 1);
+    guides.albedo = render_aov(beauty, AovKind::GuideAlbedo, spp);
+    guides.normal = render_aov(beauty, AovKind::GuideNormal, spp);
     return guides;
 }
 

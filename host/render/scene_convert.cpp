@@ -82,6 +82,8 @@ std::uint32_t aov_code(AovKind kind)
     case AovKind::Normal: return GC_AOV_NORMAL;
     case AovKind::Depth: return GC_AOV_DEPTH;
     case AovKind::PrimitiveId: return GC_AOV_PRIMID;
+    case AovKind::GuideAlbedo: return GC_AOV_GUIDE_ALBEDO;
+    case AovKind::GuideNormal: return GC_AOV_GUIDE_NORMAL;
     }
     return GC_AOV_PREVIEW;
 }

@@ -17,12 +17,14 @@
 
 GC_NAMESPACE_BEGIN
 
-/* Depth, normal and primitive id are per-pixel facts: they sample the pixel centre. Albedo
- * and the preview are jittered like the path tracer's camera rays (anti-aliasing). */
+/* Depth, normal and primitive id are per-pixel facts: they sample the pixel centre. Albedo,
+ * the preview and the denoiser's guides are jittered like the path tracer's camera rays
+ * (anti-aliasing). */
 GC_FUNC GcRay gc_aov_camera_ray(GcRenderParams params, uint pixel)
 {
     float2 jitter = make_float2(0.5f, 0.5f);
-    if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO) {
+    if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO || params.aov == GC_AOV_GUIDE_ALBEDO ||
+        params.aov == GC_AOV_GUIDE_NORMAL) {
         const float4 r = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
         jitter = make_float2(r.x, r.y);
     }
@@ -49,8 +51,8 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
     }
     const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
     const GcMaterial m = GC_MATERIAL(s.material);
-    if (params.aov == GC_AOV_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
-    if (params.aov == GC_AOV_NORMAL) return s.ns;
+    if (params.aov == GC_AOV_ALBEDO || params.aov == GC_AOV_GUIDE_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
+    if (params.aov == GC_AOV_NORMAL || params.aov == GC_AOV_GUIDE_NORMAL) return s.ns;
     if (params.aov == GC_AOV_DEPTH) return make_float3(hit.t, hit.t, hit.t);
     if (params.aov == GC_AOV_PRIMID) {
         const float id = gc_float(hit.prim);

@@ -253,7 +253,7 @@ IntegratorKind parse_integrator(const std::string& text)
 AovKind parse_aov(const std::string& text)
 {
     if (const auto kind = aov_from_name(text)) return *kind;
-    throw UsageError("aov must be one of preview, albedo, normal, depth, primid, not '" + text + "'");
+    throw UsageError("aov must be one of preview, albedo, normal, depth, primid, guide-albedo, guide-normal, not '" + text + "'");
 }
 
 // gc.Renderer: a context on one device, the scene uploaded to it, a Renderer over it.
