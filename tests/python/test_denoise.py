@@ -43,3 +43,12 @@ def test_without_pyoidn_it_says_how_to_install_it(gc, monkeypatch):
     monkeypatch.setitem(sys.modules, "pyoidn", None)  # makes `import pyoidn` raise ImportError
     with pytest.raises(gc.DeviceError, match="pip install pyoidn"):
         gc.denoise(np.zeros((4, 4, 3), np.float32))
+
+
+def test_guide_aovs_equal_the_plain_ones_without_mirrors_or_glass(gc, cornell, device):
+    # The Original Cornell box has no delta surfaces: the guides are the jittered albedo, and
+    # the normal at the same jittered rays.
+    render = lambda aov: gc.Renderer(cornell, device=device, res=RES, aov=aov).render(spp=4)
+    assert np.array_equal(render("guide-albedo"), render("albedo"))
+    assert render("guide-normal").shape == (RES[1], RES[0], 4)
+    assert "guide-albedo" in gc.AOVS and "guide-normal" in gc.AOVS
