@@ -51,7 +51,12 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
     }
     const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
     const GcMaterial m = GC_MATERIAL(s.material);
-    if (params.aov == GC_AOV_ALBEDO || params.aov == GC_AOV_GUIDE_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
+    if (params.aov == GC_AOV_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
+    /* The denoiser's albedo shows emitters too (clamped to 1), so that it sees where a lamp
+     * ends and the ceiling around it begins; a lamp's Kd alone often equals its ceiling's. */
+    if (params.aov == GC_AOV_GUIDE_ALBEDO)
+        return fmin(gc_shade_albedo(GC_SHADE_ARGS, m, s.uv) + gc_shade_emission(GC_SHADE_ARGS, m, s.uv),
+                    make_float3(1.0f, 1.0f, 1.0f));
     if (params.aov == GC_AOV_NORMAL || params.aov == GC_AOV_GUIDE_NORMAL) return s.ns;
     if (params.aov == GC_AOV_DEPTH) return make_float3(hit.t, hit.t, hit.t);
     if (params.aov == GC_AOV_PRIMID) {
