@@ -500,12 +500,15 @@ _META_KEYS = ("device", "integrator", "scene", "spp", "seconds", "seed")
 
 
 def write(path: Union[str, "_os.PathLike[str]"], image: Any,
-          metadata: Optional[Mapping[str, Any]] = None) -> None:
+          metadata: Optional[Mapping[str, Any]] = None, *, tonemap: str = "clamp", exposure: float = 0.0) -> None:
     """Writes an (H, W, 3 or 4) image (linear RGB, row 0 = top) to ``path``, atomically, as the
     CLI writes: ``.exr`` (float RGBA with ``geocold:*`` metadata), ``.png`` (sRGB 8 bit),
     ``.pfm``, ``.ppm``, and the other formats OpenImageIO writes. ``metadata`` keys:
     ``device``, ``integrator``, ``scene``, ``spp``, ``seconds``, ``seed`` (a
-    :meth:`Renderer.metadata` dict fits). Raises :class:`OutputError` naming the file."""
+    :meth:`Renderer.metadata` dict fits). 8-bit formats go through the display transform
+    ``tonemap`` (``"clamp"``, the default: a clip at 1; ``"pbr-neutral"``, the CLI's default;
+    ``"agx"``, ``"aces"``, ``"none"``) after ``exposure`` stops; float formats stay linear.
+    Raises :class:`OutputError` naming the file."""
     import numpy as np
 
     meta = dict(metadata or {})
@@ -521,7 +524,7 @@ def write(path: Union[str, "_os.PathLike[str]"], image: Any,
     try:
         _geocold.write(_os.fspath(path), arr, str(meta.get("device", "")), str(meta.get("integrator", "")),
                        str(meta.get("scene", "")), int(meta.get("spp", 0)), float(meta.get("seconds", 0.0)),
-                       int(meta.get("seed", 0)))
+                       int(meta.get("seed", 0)), str(tonemap), float(exposure))
     except (TypeError, OverflowError) as e:
         raise ArgumentError(f"write: bad metadata: {e}") from None
 

@@ -131,7 +131,8 @@ class Renderer:
     def metadata(self) -> Dict[str, Any]: ...
 
 def denoise(color: Any, albedo: Any = ..., normal: Any = ..., *, clean_aux: bool = ...) -> Any: ...
-def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ...) -> None:
+def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ..., *, tonemap: str = ...,
+          exposure: float = ...) -> None:
     """Writes an (H, W, 3 or 4) linear image atomically (.exr, .png, .pfm, .ppm, ...); OutputError naming the file."""
 
 def read(path: PathLike) -> Image:
