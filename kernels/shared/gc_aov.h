@@ -57,7 +57,10 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
     if (params.aov == GC_AOV_GUIDE_ALBEDO)
         return fmin(gc_shade_albedo(GC_SHADE_ARGS, m, s.uv) + gc_shade_emission(GC_SHADE_ARGS, m, s.uv),
                     make_float3(1.0f, 1.0f, 1.0f));
-    if (params.aov == GC_AOV_NORMAL || params.aov == GC_AOV_GUIDE_NORMAL) return s.ns;
+    if (params.aov == GC_AOV_NORMAL) return s.ns;
+    /* The denoiser's normal is the one the path tracer shades with: normal maps applied. */
+    if (params.aov == GC_AOV_GUIDE_NORMAL)
+        return gc_shade_normal(GC_SHADE_ARGS, m, GC_ATTRIB(hit.prim), make_float2(hit.u, hit.v), s.ns, s.uv);
     if (params.aov == GC_AOV_DEPTH) return make_float3(hit.t, hit.t, hit.t);
     if (params.aov == GC_AOV_PRIMID) {
         const float id = gc_float(hit.prim);
