@@ -119,7 +119,9 @@ ExitCode run_render(const Options& options)
     meta.seconds = render_seconds;
     meta.seed = settings.seed;
     Film image = renderer.film();
-    if (options.denoise && renderer.samples_done() > 0) {
+    // Ctrl-C asks for the image so far, now: the guides would take another render.
+    if (options.denoise && outcome.cancelled) log_warning("interrupted: the image is written without denoising");
+    if (options.denoise && !outcome.cancelled && renderer.samples_done() > 0) {
         const DenoiseGuides guides = render_denoise_guides(renderer);
         image = denoise(image, &guides.albedo, &guides.normal, denoise_options);
         log_verbose("denoised with Open Image Denoise (albedo and normal guides)");
