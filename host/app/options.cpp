@@ -118,6 +118,13 @@ Options parse_options(const std::vector<std::string>& args)
         }
         else if (arg == "--exposure") o.exposure_ev = parse_float(arg, value());
         else if (arg == "--denoise") o.denoise = true;
+        else if (arg == "--aperture" || arg == "--focus-distance") {
+            const std::string v = value();
+            const float x = parse_float(arg, v);
+            if (arg == "--aperture" ? x < 0.0f : x <= 0.0f)
+                bad_value(arg, v, arg == "--aperture" ? "a radius >= 0" : "a distance > 0");
+            (arg == "--aperture" ? o.aperture_radius : o.focus_distance) = x;
+        }
         else if (arg == "--seed") o.render.seed = static_cast<std::uint32_t>(parse_count(arg, value(), 0, 0xffffffffu));
         else if (arg == "--max-depth") o.render.max_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
         else if (arg == "--rr-depth") o.render.rr_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
@@ -257,6 +264,10 @@ Denoising:
                            it; GEOCOLD_OIDN_LIBRARY names it)
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
+      --aperture R         thin-lens depth of field: the lens radius in scene units
+                           (default 0, a pinhole)
+      --focus-distance D   the distance in focus, along the view axis (default: to the
+                           look-at point)
 Vulkan (when built with it):
       --preview            draw the rasterised mesh pass (albedo under a headlight) with
                            Vulkan instead of rendering; no OpenCL needed
@@ -317,6 +328,8 @@ SceneRequest scene_request(const Options& options)
     request.camera.look_at = options.look_at;
     request.camera.up = options.up;
     request.camera.fov = options.fov_degrees;
+    request.camera.aperture_radius = options.aperture_radius;
+    request.camera.focus_distance = options.focus_distance;
     return request;
 }
 

@@ -43,6 +43,8 @@ struct Options {
     std::optional<Point3> look_at;
     std::optional<Vec3> up;
     std::optional<float> fov_degrees;
+    std::optional<float> aperture_radius;  // --aperture R: thin-lens depth of field
+    std::optional<float> focus_distance;   // --focus-distance D (default: to --look-at)
 };
 
 // Throws UsageError with a message that names the offending option and value.

@@ -22,14 +22,13 @@ GC_NAMESPACE_BEGIN
  * (anti-aliasing). */
 GC_FUNC GcRay gc_aov_camera_ray(GcRenderParams params, uint pixel)
 {
-    float2 jitter = make_float2(0.5f, 0.5f);
+    /* The pixel centre through the lens centre. */
+    float4 u = make_float4(0.5f, 0.5f, 0.5f, 0.5f);
     if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO || params.aov == GC_AOV_GUIDE_ALBEDO ||
         params.aov == GC_AOV_GUIDE_NORMAL) {
-        const float4 r = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
-        jitter = make_float2(r.x, r.y);
+        u = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
     }
-    return gc_camera_ray(params.camera, params.width, params.height, pixel % params.width, pixel / params.width,
-                         jitter.x, jitter.y);
+    return gc_camera_sample(params.camera, params.width, params.height, pixel % params.width, pixel / params.width, u);
 }
 
 /* Albedo under a headlight, plus emitters shown at (clamped) full brightness.

@@ -132,5 +132,18 @@ TEST(Options, DisplayAndDenoise)
     EXPECT_NE(usage_error({"--aov", "albedo", "--denoise", "s.obj"}).find("--denoise"), std::string::npos);
 }
 
+TEST(Options, ThinLens)
+{
+    const Options o = parse({"--aperture", "0.05", "--focus-distance=3.5", "s.obj"});
+    EXPECT_EQ(o.aperture_radius, 0.05f);
+    EXPECT_EQ(o.focus_distance, 3.5f);
+    const SceneRequest r = scene_request(o);
+    EXPECT_EQ(r.camera.aperture_radius, 0.05f);
+    EXPECT_EQ(r.camera.focus_distance, 3.5f);
+    EXPECT_FALSE(parse({"s.obj"}).aperture_radius);
+    EXPECT_NE(usage_error({"--aperture", "-1", "s.obj"}).find("--aperture"), std::string::npos);
+    EXPECT_NE(usage_error({"--focus-distance", "0", "s.obj"}).find("--focus-distance"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gc

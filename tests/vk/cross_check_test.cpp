@@ -322,3 +322,29 @@ TEST_F(VkDeviceTest, DenoiseGuidesAgreeWithOpenCl)
 
 }  // namespace
 }  // namespace gc::vk
+
+namespace gc::vk {
+namespace {
+
+// Depth of field is shared camera code: the Vulkan reference and OpenCL agree through a lens.
+TEST_F(VkDeviceTest, ThinLensAgreesWithOpenCl)
+{
+    std::string why;
+    cl::Context* cl_context = shared_cl_context(&why);
+    if (!cl_context) GTEST_SKIP() << why;
+    SceneRequest request;
+    request.path = std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj";
+    request.camera.aperture_radius = 0.1f;
+    request.camera.focus_distance = 3.0f;
+    const PreparedScene prepared = prepare_scene(request);
+    RenderSettings settings;
+    settings.width = 48;
+    settings.height = 40;
+    settings.spp = 4;
+    const CrossCheckReport r = cross_check(*cl_context, *context, prepared.scene, prepared.bvh, prepared.camera, settings);
+    std::printf("thin lens: %s", r.format().c_str());
+    EXPECT_TRUE(r.passed());
+}
+
+}  // namespace
+}  // namespace gc::vk
