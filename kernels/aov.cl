@@ -5,15 +5,12 @@
  * reference and raster pass share. One work-item per pixel of the batch; each work-item
  * owns its film slot, so the sum needs no atomics.
  */
-#include "gc_aov.h"
-#include "gc_traverse.h"
+#include "gc_aov_trace.h"
 
 __kernel void aov_render(const GcRenderParams params, GC_SCENE_PARAMS, __global float4* film)
 {
     const uint i = get_global_id(0);
     if (i >= params.pixel_count) return;
     const uint pixel = params.pixel_offset + i;
-    const GcRay ray = gc_aov_camera_ray(params, pixel);
-    const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
-    film[pixel] += (float4)(gc_aov_value(GC_SHADE_ARGS, params, ray, hit), 1.0f);
+    film[pixel] += (float4)(gc_aov_sample(GC_SCENE_ARGS, params, pixel), 1.0f);
 }

@@ -19,8 +19,8 @@ __kernel void generate(const GcRenderParams params,
     const uint pixel = params.pixel_offset + slot / params.samples_in_pass;
     const uint sample = params.sample_index + slot % params.samples_in_pass;
     const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
-    rays[slot] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
-                               pixel / params.width, jitter.x, jitter.y);
+    rays[slot] = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
+                                  pixel / params.width, jitter);
     paths[slot] = gc_path_start(pixel, sample);
     ray_queue[slot] = slot;
     if (slot == 0u) counters[GC_COUNTER_RAYS_A] = gc_pass_paths(params);

@@ -65,8 +65,8 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
             const uint px = params.pixel_offset + first + (p0 + k) / samples;
             const uint sample = params.sample_index + (p0 + k) % samples;
             const float4 jitter = gc_rand4(px, sample, GC_RNG_BLOCK_CAMERA, params.seed);
-            cam[k] = gc_camera_ray(params.camera, params.width, params.height, px % params.width, px / params.width,
-                                   jitter.x, jitter.y);
+            cam[k] = gc_camera_sample(params.camera, params.width, params.height, px % params.width, px / params.width,
+                                      jitter);
         }
         /* The group's camera rays, which leave through one pixel or a few neighbours, as one
          * packet (gc_packet8.h) when there are enough of them; else each path traces its own. */

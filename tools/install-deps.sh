@@ -31,3 +31,14 @@ if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${packages[@]}"
+
+# Open Image Denoise for --denoise and gc.denoise: not in Debian 12, so PyPI's pyoidn (its
+# wheel carries libOpenImageDenoise.so.2, the CPU device and the weights) goes into a virtual
+# environment, and its library folder is linked to /opt/geocold-cl/oidn, where geocold-cl
+# looks (host/image/denoise.h). GEOCOLD_OIDN_VENV moves the environment.
+oidn_venv="${GEOCOLD_OIDN_VENV:-/opt/geocold-cl/oidn-venv}"
+"${sudo_cmd[@]}" mkdir -p /opt/geocold-cl
+if [ ! -x "$oidn_venv/bin/python" ]; then "${sudo_cmd[@]}" python3 -m venv "$oidn_venv"; fi
+"${sudo_cmd[@]}" "$oidn_venv/bin/python" -m pip install --quiet --disable-pip-version-check 'pyoidn==2.5.1.0'
+oidn_lib="$("$oidn_venv/bin/python" -c 'import importlib.util as u; print(u.find_spec("pyoidn").submodule_search_locations[0])')/oidn"
+"${sudo_cmd[@]}" ln -sfn "$oidn_lib" /opt/geocold-cl/oidn

@@ -80,4 +80,9 @@ std::filesystem::path image_module_from_environment()
     return variable("GEOCOLD_IMAGE_MODULE");
 }
 
+std::filesystem::path oidn_library_from_environment()
+{
+    return variable("GEOCOLD_OIDN_LIBRARY");
+}
+
 }  // namespace gc

@@ -18,4 +18,8 @@ RenderSetup render_setup_from_environment();
 // GEOCOLD_IMAGE_MODULE: the image module to load, or empty to search beside the executable.
 std::filesystem::path image_module_from_environment();
 
+// GEOCOLD_OIDN_LIBRARY: Open Image Denoise's library for --denoise, or empty to look where
+// tools/install-deps.sh puts it, then on the system's library path.
+std::filesystem::path oidn_library_from_environment();
+
 }  // namespace gc

@@ -69,7 +69,7 @@ IntegratorKind parse_integrator(const std::string& text)
 AovKind parse_aov(const std::string& text)
 {
     if (const auto kind = aov_from_name(text)) return *kind;
-    bad_value("--aov", text, "one of preview, albedo, normal, depth, primid");
+    bad_value("--aov", text, "one of preview, albedo, normal, depth, primid, guide-albedo, guide-normal");
 }
 
 }  // namespace
@@ -110,6 +110,20 @@ Options parse_options(const std::vector<std::string>& args)
         else if (arg == "--spp") {
             o.render.spp = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxSpp));
             o.spp_given = true;
+        }
+        else if (arg == "--tonemap") {
+            const std::string v = value();
+            o.tonemap = parse_tonemap(v);
+            if (!o.tonemap) bad_value(arg, v, tonemap_names());
+        }
+        else if (arg == "--exposure") o.exposure_ev = parse_float(arg, value());
+        else if (arg == "--denoise") o.denoise = true;
+        else if (arg == "--aperture" || arg == "--focus-distance") {
+            const std::string v = value();
+            const float x = parse_float(arg, v);
+            if (arg == "--aperture" ? x < 0.0f : x <= 0.0f)
+                bad_value(arg, v, arg == "--aperture" ? "a radius >= 0" : "a distance > 0");
+            (arg == "--aperture" ? o.aperture_radius : o.focus_distance) = x;
         }
         else if (arg == "--seed") o.render.seed = static_cast<std::uint32_t>(parse_count(arg, value(), 0, 0xffffffffu));
         else if (arg == "--max-depth") o.render.max_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
@@ -191,6 +205,10 @@ Options parse_options(const std::vector<std::string>& args)
         else if (o.scene_path.empty()) o.scene_path = arg;
         else throw UsageError("more than one scene given ('" + o.scene_path + "' and '" + arg + "')");
     }
+    if (o.exposure_ev && o.tonemap == Tonemap::None)
+        throw UsageError("--exposure has no effect with --tonemap none (use --tonemap clamp)");
+    if (o.denoise && o.render.integrator == IntegratorKind::Aov)
+        throw UsageError("--denoise needs a rendered image (--integrator path or whitted), not an AOV");
     if (o.up && length(*o.up) == 0.0f) throw UsageError("--up must not be the zero vector");
     if (o.look_from && o.look_at && *o.look_from == *o.look_at)
         throw UsageError("--look-from and --look-at must differ");
@@ -239,7 +257,8 @@ Rendering:
       --integrator NAME    path (default; unbiased path tracer with next-event estimation),
                            whitted (classic ray tracing), aov (first-hit outputs)
       --aov NAME           preview | albedo | normal | depth | primid   (implies
-                           --integrator aov)
+                           --integrator aov); guide-albedo | guide-normal: albedo and
+                           normal seen through mirrors and glass (--denoise's guides)
       --spp N              samples per pixel (default 64)
       --time-limit SEC     stop after the pass that crosses SEC seconds (whichever of
                            --spp and --time-limit ends first)
@@ -267,8 +286,23 @@ Several devices and machines (a frame is a fixed list of chunks of samples):
                            render); refuses different scenes, options or seeds (exit 3) and
                            overlapping or missing samples (exit 7, listing the ranges), and
                            then writes nothing; --spp N: the frame must end at sample N
+Display (8-bit outputs: .png, .ppm; .exr/.pfm/.hdr/.tif are always linear):
+      --tonemap NAME       pbr-neutral (default; Khronos PBR Neutral: base colours kept,
+                           highlights rolled off) | agx (Blender's AgX) | aces (Narkowicz's
+                           ACES fit) | clamp (clip at 1) | none (no exposure, clip at 1;
+                           the default for --aov outputs)
+      --exposure EV        scale by 2^EV before the curve (default 0)
+Denoising:
+      --denoise            denoise the image with Intel Open Image Denoise (CPU), guided
+                           by albedo and normal AOVs seen through mirrors and glass;
+                           needs libOpenImageDenoise.so.2 (tools/install-deps.sh installs
+                           it; GEOCOLD_OIDN_LIBRARY names it)
 Camera (the file's camera if it has one, else framed on the scene bounds):
       --look-from X,Y,Z    --look-at X,Y,Z    --up X,Y,Z    --fov DEGREES (vertical)
+      --aperture R         thin-lens depth of field: the lens radius in scene units
+                           (default 0, a pinhole)
+      --focus-distance D   the distance in focus, along the view axis (default: to the
+                           look-at point)
 Vulkan (when built with it):
       --preview            draw the rasterised mesh pass (albedo under a headlight) with
                            Vulkan instead of rendering; no OpenCL needed
@@ -307,6 +341,9 @@ Environment:
                            built in (.exr, .hdr, .tif, reading .png; .pfm/.ppm and writing
                            .png need none). Default: geocold-image-oiio.so beside
                            geocold-cl, else ../lib/geocold-cl/geocold-image-oiio.so
+  GEOCOLD_OIDN_LIBRARY     Open Image Denoise for --denoise (default:
+                           /opt/geocold-cl/oidn/lib/libOpenImageDenoise.so.2, where
+                           tools/install-deps.sh puts it, else the system's)
 
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file
@@ -327,6 +364,8 @@ SceneRequest scene_request(const Options& options)
     request.camera.look_at = options.look_at;
     request.camera.up = options.up;
     request.camera.fov = options.fov_degrees;
+    request.camera.aperture_radius = options.aperture_radius;
+    request.camera.focus_distance = options.focus_distance;
     return request;
 }
 

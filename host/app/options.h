@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "host/image/display_transform.h"
 #include "host/math/affine.h"
 #include "host/render/render_settings.h"
 #include "host/render/session.h"
@@ -37,6 +38,9 @@ struct Options {
     std::uint32_t samples_first = 0;
     std::uint32_t samples_end = 0;
     std::uint32_t chunk_samples = 64;  // --chunk-samples: the frame's canonical chunk size
+    std::optional<Tonemap> tonemap;   // --tonemap: 8-bit outputs' curve (default: pbr-neutral; none for AOVs)
+    std::optional<float> exposure_ev; // --exposure EV: 8-bit outputs are scaled by 2^EV first
+    bool denoise = false;         // --denoise: Open Image Denoise on the beauty, with albedo/normal guides
 
     RenderSettings render;
 
@@ -44,6 +48,8 @@ struct Options {
     std::optional<Point3> look_at;
     std::optional<Vec3> up;
     std::optional<float> fov_degrees;
+    std::optional<float> aperture_radius;  // --aperture R: thin-lens depth of field
+    std::optional<float> focus_distance;   // --focus-distance D (default: to --look-at)
 };
 
 // Throws UsageError with a message that names the offending option and value.

@@ -11,10 +11,12 @@
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
 #include "host/cl/device.h"
+#include "host/image/denoise.h"
 #include "host/image/image_io.h"
 #include "host/render/frame_hash.h"
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
+#include "host/render/denoise_guides.h"
 #include "host/render/session.h"
 #include "host/util/log.h"
 #include "host/util/progress.h"
@@ -44,6 +46,21 @@ std::string device_names(const FrameOutcome& outcome, bool all)
     std::string out;
     for (const std::string& n : names) out += (out.empty() ? "" : "; ") + n;
     return out;
+}
+
+// The CLI's display transform: the options', else Khronos PBR Neutral for rendered images and
+// none for AOVs (their values are data: albedo, normals, depth, ids).
+DisplayTransform display_transform(const Options& options, const RenderSettings& settings,
+                                   const std::filesystem::path& output)
+{
+    DisplayTransform display;
+    display.tonemap = options.tonemap.value_or(settings.integrator == IntegratorKind::Aov ? Tonemap::None
+                                                                                         : Tonemap::PbrNeutral);
+    display.exposure_ev = options.exposure_ev.value_or(0.0f);
+    if ((options.tonemap || options.exposure_ev) && !is_display_referred(output))
+        log_warning(output.string() + " is a float format and is written linear: --tonemap and --exposure "
+                    "apply to 8-bit outputs (.png, .ppm)");
+    return display;
 }
 
 }  // namespace
@@ -108,6 +125,15 @@ ExitCode run_render(const Options& options)
                                ? ChunkPlan::for_range(options.samples_first, options.samples_end, options.chunk_samples)
                                : ChunkPlan::for_range(0, settings.spp, options.chunk_samples);
     if (options.partial) settings.spp = plan.end_sample;
+
+    // --denoise without the library fails here, before any rendering, and writes nothing.
+    DenoiseOptions denoise_options;
+    denoise_options.library = oidn_library_from_environment();
+    denoise_options.threads = options.threads;
+    if (options.denoise) {
+        std::string why;
+        if (!denoiser_available(denoise_options, &why)) throw DeviceError("--denoise: " + why);
+    }
 
     PreparedScene prepared = prepare_scene(scene_request(options));
     if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
@@ -182,7 +208,17 @@ ExitCode run_render(const Options& options)
             frame.sums.height = std::uint32_t(settings.height);
             frame.sums.sums.assign(std::size_t(settings.width) * settings.height, glm::vec4(0.0f));
         }
-        write_image(output, mean_film(frame.sums), meta);
+        Film image = mean_film(frame.sums);
+        // Ctrl-C asks for the image so far, now: the guides would take another render.
+        if (options.denoise && outcome.cancelled) log_warning("interrupted: the image is written without denoising");
+        if (options.denoise && !outcome.cancelled && samples > 0) {
+            // The guides are facts of the scene and the camera: the first device renders them.
+            Session guide_session(devices.front(), prepared, settings, setup);
+            const DenoiseGuides guides = render_denoise_guides(guide_session.renderer(), samples);
+            image = denoise(image, &guides.albedo, &guides.normal, denoise_options);
+            log_verbose("denoised with Open Image Denoise (albedo and normal guides)");
+        }
+        write_image(output, image, meta, display_transform(options, settings, output));
     }
     prepared = PreparedScene{};
 

@@ -136,10 +136,22 @@ void check_output_location(const std::filesystem::path& path)
     ::unlink(probe.c_str());
 }
 
-void write_image(const std::filesystem::path& path, const Film& film, const ImageMetadata& meta)
+bool is_display_referred(const std::filesystem::path& path)
 {
-    if (film.empty()) throw OutputError(detail::cannot_write(path) + "the image is empty (0 pixels)");
     const std::string ext = lower_extension(path);
+    return !(ext == ".exr" || ext == ".pfm" || ext == ".hdr" || ext == ".tif" || ext == ".tiff");
+}
+
+void write_image(const std::filesystem::path& path, const Film& linear, const ImageMetadata& meta,
+                 const DisplayTransform& display)
+{
+    if (linear.empty()) throw OutputError(detail::cannot_write(path) + "the image is empty (0 pixels)");
+    const std::string ext = lower_extension(path);
+    // 8-bit outputs get the display transform; a copy only when it changes something.
+    Film transformed;
+    const bool transform = is_display_referred(path) && !is_identity(display);
+    if (transform) transformed = to_display_linear(linear, display);
+    const Film& film = transform ? transformed : linear;
     if (!writes_builtin(ext)) {
         if (const std::string why = format_problem(path); !why.empty())
             throw OutputError(detail::cannot_write(path) + why);

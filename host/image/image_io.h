@@ -12,8 +12,9 @@
 //         "geocold:seed" (string: EXR has no unsigned attribute) and "Software"
 //   .tif/.tiff  linear float RGBA;  .hdr  linear float RGB
 //   any other format OIIO writes: 8-bit sRGB RGB, metadata as text where the format has it
-// 8-bit outputs are the linear values clamped to [0, 1] and encoded with the sRGB OETF
-// (IEC 61966-2-1) — no tone mapping: scale the film first if you want an exposure change.
+// 8-bit outputs are the film through `display` (display_transform.h: exposure and a tone
+// curve; the default is a plain clip to [0, 1]), encoded with the sRGB OETF (IEC 61966-2-1).
+// Float outputs (.exr, .pfm, .hdr, .tif) are the linear film, whatever `display` says.
 //
 // Writes never leave a truncated file: the image goes to "<path>.tmp-<pid>" in the same
 // directory, is fsync'ed, then renamed over the target; on any failure the temp file is
@@ -25,12 +26,18 @@
 #include <filesystem>
 #include <string>
 
+#include "host/image/display_transform.h"
 #include "host/image/film.h"
 #include "host/image/srgb.h"
 
 namespace gc {
 
-void write_image(const std::filesystem::path& path, const Film& film, const ImageMetadata& meta);
+void write_image(const std::filesystem::path& path, const Film& film, const ImageMetadata& meta,
+                 const DisplayTransform& display = {});
+
+// True for the formats written as 8-bit display values (.png, .ppm, ...), false for the
+// float ones (.exr, .pfm, .hdr, .tif, .tiff), which stay linear.
+bool is_display_referred(const std::filesystem::path& path);
 
 // Fails (OutputError) before any rendering when write_image(path, ...) cannot succeed: an
 // unsupported extension (or one that needs OIIO in a build without it, or an image module

@@ -12,7 +12,7 @@
 namespace gc {
 
 enum class IntegratorKind { Aov, Path, Whitted };
-enum class AovKind { Preview, Albedo, Normal, Depth, PrimitiveId };
+enum class AovKind { Preview, Albedo, Normal, Depth, PrimitiveId, GuideAlbedo, GuideNormal };
 
 struct RenderSettings {
     int width = 512;
@@ -50,6 +50,8 @@ inline const char* aov_name(AovKind k)
     case AovKind::Normal: return "normal";
     case AovKind::Depth: return "depth";
     case AovKind::PrimitiveId: return "primid";
+    case AovKind::GuideAlbedo: return "guide-albedo";
+    case AovKind::GuideNormal: return "guide-normal";
     }
     return "?";
 }
@@ -65,7 +67,8 @@ inline std::optional<IntegratorKind> integrator_from_name(std::string_view name)
 
 inline std::optional<AovKind> aov_from_name(std::string_view name)
 {
-    for (AovKind k : {AovKind::Preview, AovKind::Albedo, AovKind::Normal, AovKind::Depth, AovKind::PrimitiveId})
+    for (AovKind k : {AovKind::Preview, AovKind::Albedo, AovKind::Normal, AovKind::Depth, AovKind::PrimitiveId,
+                      AovKind::GuideAlbedo, AovKind::GuideNormal})
         if (name == aov_name(k)) return k;
     return std::nullopt;
 }

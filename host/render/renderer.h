@@ -92,6 +92,11 @@ public:
     const cl::Program& program() const { return m_integrator->program(); }
     const DeviceScene& device_scene() const { return *m_scene; }
     const RenderSettings& settings() const { return m_settings; }
+    const Camera& camera() const { return m_camera; }
+    const RenderSetup& setup() const { return m_setup; }
+    const cl::Context& context() const { return m_context; }
+    // The device scene, for another renderer of it (denoise_guides.h).
+    std::shared_ptr<const DeviceScene> shared_scene() const { return m_scene; }
 
     // The mean of the samples so far, linear RGB, alpha 1.
     Film film() const;

@@ -84,6 +84,8 @@ std::uint32_t aov_code(AovKind kind)
     case AovKind::Normal: return GC_AOV_NORMAL;
     case AovKind::Depth: return GC_AOV_DEPTH;
     case AovKind::PrimitiveId: return GC_AOV_PRIMID;
+    case AovKind::GuideAlbedo: return GC_AOV_GUIDE_ALBEDO;
+    case AovKind::GuideNormal: return GC_AOV_GUIDE_NORMAL;
     }
     return GC_AOV_PREVIEW;
 }
@@ -370,8 +372,11 @@ dev::GcCamera make_camera(const Camera& camera, int width, int height)
     const float tan_half = std::tan(0.5f * camera.vfov_degrees * 3.14159265358979f / 180.0f);
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     dev::GcCamera d{};
-    d.origin = v4(camera.look_from);
-    d.forward = v4(forward.glm());
+    // The thin lens rides in the w components (gc_camera_sample).
+    const float focus = camera.focus_distance > 0.0f ? camera.focus_distance
+                                                     : float(dot(camera.look_at - camera.look_from, forward));
+    d.origin = v4(camera.look_from, camera.aperture_radius);
+    d.forward = v4(forward.glm(), camera.aperture_radius > 0.0f ? focus : 0.0f);
     d.right = v4((right * (tan_half * aspect)).glm());
     d.up = v4((up * tan_half).glm());
     return d;

@@ -93,6 +93,8 @@ Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides)
     if (overrides.look_at) camera.look_at = *overrides.look_at;
     if (overrides.up) camera.up = *overrides.up;
     if (overrides.fov) camera.vfov_degrees = *overrides.fov;
+    if (overrides.aperture_radius) camera.aperture_radius = *overrides.aperture_radius;
+    if (overrides.focus_distance) camera.focus_distance = *overrides.focus_distance;
 
     // Compared exactly and normalised in double, so that cameras at any scale float can hold
     // pass (a float length underflows for points closer than ~1e-19).
@@ -104,6 +106,10 @@ Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides)
     if (!(length(side) > 1e-6f)) throw UsageError("camera: the up vector is parallel to the view direction");
     if (!(camera.vfov_degrees > 0.0f && camera.vfov_degrees < 180.0f))
         throw UsageError("camera: field of view " + std::to_string(camera.vfov_degrees) + " degrees is outside (0, 180)");
+    if (!(camera.aperture_radius >= 0.0f) || !std::isfinite(camera.aperture_radius))
+        throw UsageError("camera: the aperture radius must be a finite number >= 0");
+    if (!(camera.focus_distance >= 0.0f) || !std::isfinite(camera.focus_distance))
+        throw UsageError("camera: the focus distance must be a finite number > 0 (0: the look-at point)");
     return camera;
 }
 

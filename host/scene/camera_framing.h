@@ -13,6 +13,8 @@ struct CameraOverrides {
     std::optional<Point3> look_at;
     std::optional<Vec3> up;
     std::optional<float> fov; // full vertical field of view, degrees
+    std::optional<float> aperture_radius;  // thin lens: files have no aperture, so flags only
+    std::optional<float> focus_distance;
 };
 
 // Looks at the centre of the scene's bounds from +Z (down -Z, +Y up) with a 40-degree

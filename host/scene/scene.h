@@ -79,6 +79,8 @@ struct Camera {
     Point3 look_at{0, 0, 0};
     Vec3 up{0, 1, 0};
     float vfov_degrees = 40.0f; // full vertical field of view
+    float aperture_radius = 0.0f; // thin lens (gc_camera.h); 0 = pinhole
+    float focus_distance = 0.0f;  // along the view axis; 0 = to look_at
 };
 
 struct PointLight {

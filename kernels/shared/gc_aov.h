@@ -17,17 +17,18 @@
 
 GC_NAMESPACE_BEGIN
 
-/* Depth, normal and primitive id are per-pixel facts: they sample the pixel centre. Albedo
- * and the preview are jittered like the path tracer's camera rays (anti-aliasing). */
+/* Depth, normal and primitive id are per-pixel facts: they sample the pixel centre. Albedo,
+ * the preview and the denoiser's guides are jittered like the path tracer's camera rays
+ * (anti-aliasing). */
 GC_FUNC GcRay gc_aov_camera_ray(GcRenderParams params, uint pixel)
 {
-    float2 jitter = make_float2(0.5f, 0.5f);
-    if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO) {
-        const float4 r = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
-        jitter = make_float2(r.x, r.y);
+    /* The pixel centre through the lens centre. */
+    float4 u = make_float4(0.5f, 0.5f, 0.5f, 0.5f);
+    if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO || params.aov == GC_AOV_GUIDE_ALBEDO ||
+        params.aov == GC_AOV_GUIDE_NORMAL) {
+        u = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
     }
-    return gc_camera_ray(params.camera, params.width, params.height, pixel % params.width, pixel / params.width,
-                         jitter.x, jitter.y);
+    return gc_camera_sample(params.camera, params.width, params.height, pixel % params.width, pixel / params.width, u);
 }
 
 /* Albedo under a headlight, plus emitters shown at (clamped) full brightness.
@@ -50,7 +51,15 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
     const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
     const GcMaterial m = GC_MATERIAL(s.material);
     if (params.aov == GC_AOV_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
+    /* The denoiser's albedo shows emitters too (clamped to 1), so that it sees where a lamp
+     * ends and the ceiling around it begins; a lamp's Kd alone often equals its ceiling's. */
+    if (params.aov == GC_AOV_GUIDE_ALBEDO)
+        return fmin(gc_shade_albedo(GC_SHADE_ARGS, m, s.uv) + gc_shade_emission(GC_SHADE_ARGS, m, s.uv),
+                    make_float3(1.0f, 1.0f, 1.0f));
     if (params.aov == GC_AOV_NORMAL) return s.ns;
+    /* The denoiser's normal is the one the path tracer shades with: normal maps applied. */
+    if (params.aov == GC_AOV_GUIDE_NORMAL)
+        return gc_shade_normal(GC_SHADE_ARGS, m, GC_ATTRIB(hit.prim), make_float2(hit.u, hit.v), s.ns, s.uv);
     if (params.aov == GC_AOV_DEPTH) return make_float3(hit.t, hit.t, hit.t);
     if (params.aov == GC_AOV_PRIMID) {
         const float id = gc_float(hit.prim);

@@ -228,6 +228,10 @@ GC_STRUCT(GcCamera) {
 #define GC_AOV_NORMAL 2u  /* shading normal, world space, mapped as is (may be negative) */
 #define GC_AOV_DEPTH 3u   /* distance along the ray */
 #define GC_AOV_PRIMID 4u  /* scene triangle index as a float, -1 for misses */
+/* The denoiser's guides: albedo and shading normal at the first vertex that is not a
+ * smooth dielectric or a pure mirror (gc_aov_trace.h), jittered like the beauty. */
+#define GC_AOV_GUIDE_ALBEDO 5u
+#define GC_AOV_GUIDE_NORMAL 6u
 
 /* The one parameter block every kernel takes. Set in one place on the host. */
 GC_STRUCT(GcRenderParams) {

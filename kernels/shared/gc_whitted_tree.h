@@ -79,8 +79,8 @@ GC_FUNC float3 gc_whitted_sample(GC_SCENE_PARAMS, GcRenderParams params, uint pi
     uint stack_depth[GC_WHITTED_STACK];
 
     const float4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
-    stack_ray[0] = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
-                                 pixel / params.width, jitter.x, jitter.y);
+    stack_ray[0] = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
+                                    pixel / params.width, jitter);
     stack_weight[0] = make_float3(1.0f, 1.0f, 1.0f);
     stack_depth[0] = 1u;
     uint sp = 1u;

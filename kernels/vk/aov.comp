@@ -6,8 +6,7 @@
 #version 450
 #define GC_VK_COMPUTE 1
 #include "scene_bindings.glsl"
-#include "gc_traverse.h"
-#include "gc_aov.h"
+#include "gc_aov_trace.h"
 
 layout(local_size_x = GC_VK_LOCAL_SIZE) in;
 layout(push_constant) uniform Push { uint sample_index; } push;
@@ -19,7 +18,5 @@ void main()
     const uint i = gl_GlobalInvocationID.x;
     if (i >= params.pixel_count) return;
     const uint pixel = params.pixel_offset + i;
-    const GcRay ray = gc_aov_camera_ray(params, pixel);
-    const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
-    film[pixel] += vec4(gc_aov_value(GC_SHADE_ARGS, params, ray, hit), 1.0f);
+    film[pixel] += vec4(gc_aov_sample(GC_SCENE_ARGS, params, pixel), 1.0f);
 }

@@ -26,8 +26,8 @@ void main()
 
     /* generate.cl */
     const vec4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
-    GcRay ray = gc_camera_ray(params.camera, params.width, params.height, pixel % params.width,
-                              pixel / params.width, jitter.x, jitter.y);
+    GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
+                                 pixel / params.width, jitter);
     GcPathState path = gc_path_start(pixel, params.sample_index);
 
     /* extend -> shade -> shadow until the path ends (at most max_depth vertices). */

@@ -26,7 +26,7 @@ from . import _geocold
 __all__ = [
     "Error", "SceneError", "DeviceError", "OutputError", "ArgumentError",
     "Device", "devices", "load", "Scene", "Material", "Materials", "Camera", "Params",
-    "Renderer", "Sums", "render_frame", "write", "read", "INTEGRATORS", "AOVS", "__version__",
+    "Renderer", "Sums", "render_frame", "write", "read", "denoise", "INTEGRATORS", "AOVS", "__version__",
 ]
 __version__ = "0.1.0"
 
@@ -39,7 +39,7 @@ ArgumentError = _geocold.ArgumentError
 #: Every integrator the command line has (``--integrator``).
 INTEGRATORS = ("path", "whitted", "aov")
 #: Every AOV the command line has (``--aov``).
-AOVS = ("preview", "albedo", "normal", "depth", "primid")
+AOVS = ("preview", "albedo", "normal", "depth", "primid", "guide-albedo", "guide-normal")
 
 _HERE = _Path(__file__).resolve().parent
 _IMAGE_MODULE = _HERE / "geocold-image-oiio.so"
@@ -544,12 +544,15 @@ _META_KEYS = ("device", "integrator", "scene", "spp", "seconds", "seed")
 
 
 def write(path: Union[str, "_os.PathLike[str]"], image: Any,
-          metadata: Optional[Mapping[str, Any]] = None) -> None:
+          metadata: Optional[Mapping[str, Any]] = None, *, tonemap: str = "clamp", exposure: float = 0.0) -> None:
     """Writes an (H, W, 3 or 4) image (linear RGB, row 0 = top) to ``path``, atomically, as the
     CLI writes: ``.exr`` (float RGBA with ``geocold:*`` metadata), ``.png`` (sRGB 8 bit),
     ``.pfm``, ``.ppm``, and the other formats OpenImageIO writes. ``metadata`` keys:
     ``device``, ``integrator``, ``scene``, ``spp``, ``seconds``, ``seed`` (a
-    :meth:`Renderer.metadata` dict fits). Raises :class:`OutputError` naming the file."""
+    :meth:`Renderer.metadata` dict fits). 8-bit formats go through the display transform
+    ``tonemap`` (``"clamp"``, the default: a clip at 1; ``"pbr-neutral"``, the CLI's default;
+    ``"agx"``, ``"aces"``, ``"none"``) after ``exposure`` stops; float formats stay linear.
+    Raises :class:`OutputError` naming the file."""
     import numpy as np
 
     meta = dict(metadata or {})
@@ -565,9 +568,47 @@ def write(path: Union[str, "_os.PathLike[str]"], image: Any,
     try:
         _geocold.write(_os.fspath(path), arr, str(meta.get("device", "")), str(meta.get("integrator", "")),
                        str(meta.get("scene", "")), int(meta.get("spp", 0)), float(meta.get("seconds", 0.0)),
-                       int(meta.get("seed", 0)))
+                       int(meta.get("seed", 0)), str(tonemap), float(exposure))
     except (TypeError, OverflowError) as e:
         raise ArgumentError(f"write: bad metadata: {e}") from None
+
+
+def denoise(color: Any, albedo: Any = None, normal: Any = None, *, clean_aux: bool = False) -> Any:
+    """Denoises a linear HDR image (H, W, 3 or 4) with Intel Open Image Denoise's ``RT``
+    filter on the CPU, through PyPI's ``pyoidn`` (``pip install pyoidn``), and returns a
+    float32 image of the same shape (alpha kept). ``albedo`` and ``normal`` are optional
+    guides of the same size, e.g. ``Renderer(scene, aov="albedo")`` and ``aov="normal"``
+    renders (``normal`` needs ``albedo``); ``clean_aux=True`` says they are noise-free (rendered
+    with enough samples), as the CLI's ``--denoise`` guides are. Raises :class:`DeviceError`
+    without ``pyoidn`` and :class:`ArgumentError` on mismatched shapes."""
+    import numpy as np
+
+    try:
+        import pyoidn
+    except ImportError as e:
+        raise DeviceError(f"denoise needs the pyoidn package (pip install pyoidn): {e}") from None
+
+    def rgb(image: Any, what: str) -> Any:
+        arr = np.asarray(image, dtype=np.float32)
+        if arr.ndim != 3 or arr.shape[2] not in (3, 4):
+            raise ArgumentError(f"denoise: {what} must be (height, width, 3 or 4), not {arr.shape}")
+        return np.ascontiguousarray(arr[..., :3])
+
+    c = rgb(color, "color")
+    guides = {}
+    for name, image in (("albedo", albedo), ("normal", normal)):
+        if image is not None:
+            guides[name] = rgb(image, name)
+            if guides[name].shape != c.shape:
+                raise ArgumentError(f"denoise: {name} is {guides[name].shape[:2]}, color {c.shape[:2]}")
+    if "normal" in guides and "albedo" not in guides:
+        raise ArgumentError("denoise: a normal guide needs an albedo guide too (OIDN's rule)")
+    out = np.asarray(pyoidn.denoise(c, guides.get("albedo"), guides.get("normal"), hdr=True,
+                                    clean_aux=bool(clean_aux and guides)), dtype=np.float32)
+    arr = np.asarray(color, dtype=np.float32)
+    if arr.shape[2] == 4:
+        out = np.concatenate([out, arr[..., 3:]], axis=2)
+    return out
 
 
 def read(path: Union[str, "_os.PathLike[str]"]) -> Any:

@@ -137,7 +137,9 @@ def render_frame(scene: Scene, devices: Union[str, List[Union[str, int, Device]]
                  time_limit: float = ...) -> Tuple[Image, int]:
     """One frame on several devices (chunks added in chunk order); returns (mean image, spp)."""
 
-def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ...) -> None:
+def denoise(color: Any, albedo: Any = ..., normal: Any = ..., *, clean_aux: bool = ...) -> Any: ...
+def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ..., *, tonemap: str = ...,
+          exposure: float = ...) -> None:
     """Writes an (H, W, 3 or 4) linear image atomically (.exr, .png, .pfm, .ppm, ...); OutputError naming the file."""
 
 def read(path: PathLike) -> Image:

@@ -256,7 +256,7 @@ IntegratorKind parse_integrator(const std::string& text)
 AovKind parse_aov(const std::string& text)
 {
     if (const auto kind = aov_from_name(text)) return *kind;
-    throw UsageError("aov must be one of preview, albedo, normal, depth, primid, not '" + text + "'");
+    throw UsageError("aov must be one of preview, albedo, normal, depth, primid, guide-albedo, guide-normal, not '" + text + "'");
 }
 
 // gc.Renderer: a context on one device, the scene uploaded to it, a Renderer over it.
@@ -553,8 +553,11 @@ std::vector<nb::dict> devices()
 
 void write_file(const std::string& path, nb::ndarray<float, nb::ndim<3>, nb::c_contig, nb::device::cpu> image,
            const std::string& device, const std::string& integrator, const std::string& scene, std::uint32_t spp,
-           double seconds, std::uint32_t seed)
+           double seconds, std::uint32_t seed, const std::string& tonemap, float exposure)
 {
+    const std::optional<Tonemap> curve = parse_tonemap(tonemap);
+    if (!curve) throw UsageError("write: tonemap must be one of " + std::string(tonemap_names()) + ", not '" + tonemap + "'");
+    if (!std::isfinite(exposure)) throw UsageError("write: exposure must be a finite number of stops");
     const size_t h = image.shape(0), w = image.shape(1), c = image.shape(2);
     if (c != 3 && c != 4) throw UsageError("write: the image must be (height, width, 3 or 4), not " + std::to_string(c) + " channels");
     if (h == 0 || w == 0) throw UsageError("write: the image is empty");
@@ -566,7 +569,7 @@ void write_file(const std::string& path, nb::ndarray<float, nb::ndim<3>, nb::c_c
     ImageMetadata meta{device, integrator, scene, spp, seconds, seed};
     nb::gil_scoped_release release;
     check_output_path(path);
-    write_image(path, film, meta);
+    write_image(path, film, meta, DisplayTransform{*curve, exposure});
 }
 
 FloatArray read_file(const std::string& path)
@@ -638,7 +641,8 @@ NB_MODULE(_geocold, m)
     });
     m.def("devices", &devices);
     m.def("load", &load, "path"_a, "gltf_scene"_a = -1, "phong_as_lambert"_a = false);
-    m.def("write", &write_file, "path"_a, "image"_a, "device"_a, "integrator"_a, "scene"_a, "spp"_a, "seconds"_a, "seed"_a);
+    m.def("write", &write_file, "path"_a, "image"_a, "device"_a, "integrator"_a, "scene"_a, "spp"_a, "seconds"_a, "seed"_a,
+          "tonemap"_a = "clamp", "exposure"_a = 0.0f);
     m.def("read", &read_file, "path"_a);
     m.def("cli_main", &cli_main, "args"_a);
     m.def("render_frame", &render_frame_on, "scene"_a, "devices"_a, "integrator"_a, "aov"_a, "width"_a, "height"_a,

@@ -110,3 +110,40 @@ TEST(Options, BadInputIsAUsageErrorNamingTheOption)
 
 }  // namespace
 }  // namespace gc
+
+namespace gc {
+namespace {
+
+TEST(Options, DisplayAndDenoise)
+{
+    const Options defaults = parse({"scene.obj"});
+    EXPECT_FALSE(defaults.tonemap);
+    EXPECT_FALSE(defaults.exposure_ev);
+    EXPECT_FALSE(defaults.denoise);
+    const Options o = parse({"--tonemap", "agx", "--exposure=-1.5", "--denoise", "scene.obj"});
+    EXPECT_EQ(o.tonemap, Tonemap::Agx);
+    EXPECT_EQ(o.exposure_ev, -1.5f);
+    EXPECT_TRUE(o.denoise);
+    for (const char* name : {"none", "clamp", "pbr-neutral", "agx", "aces"})
+        EXPECT_EQ(tonemap_name(*parse({"--tonemap", name, "s.obj"}).tonemap), std::string(name));
+    EXPECT_NE(usage_error({"--tonemap", "filmic", "s.obj"}).find("--tonemap"), std::string::npos);
+    EXPECT_NE(usage_error({"--exposure", "lots", "s.obj"}).find("--exposure"), std::string::npos);
+    EXPECT_NE(usage_error({"--tonemap", "none", "--exposure", "1", "s.obj"}).find("--exposure"), std::string::npos);
+    EXPECT_NE(usage_error({"--aov", "albedo", "--denoise", "s.obj"}).find("--denoise"), std::string::npos);
+}
+
+TEST(Options, ThinLens)
+{
+    const Options o = parse({"--aperture", "0.05", "--focus-distance=3.5", "s.obj"});
+    EXPECT_EQ(o.aperture_radius, 0.05f);
+    EXPECT_EQ(o.focus_distance, 3.5f);
+    const SceneRequest r = scene_request(o);
+    EXPECT_EQ(r.camera.aperture_radius, 0.05f);
+    EXPECT_EQ(r.camera.focus_distance, 3.5f);
+    EXPECT_FALSE(parse({"s.obj"}).aperture_radius);
+    EXPECT_NE(usage_error({"--aperture", "-1", "s.obj"}).find("--aperture"), std::string::npos);
+    EXPECT_NE(usage_error({"--focus-distance", "0", "s.obj"}).find("--focus-distance"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gc

@@ -83,6 +83,8 @@ Reference read_reference(const fs::path& json_path)
     const Point3 up = point(cam.at("up"));
     r.camera.up = Vec3(up.x, up.y, up.z);
     r.camera.vfov_degrees = cam.at("fov").get<float>();
+    r.camera.aperture_radius = cam.value("aperture_radius", 0.0f);
+    r.camera.focus_distance = cam.value("focus_distance", 0.0f);
     r.settings.width = cam.at("res").at(0).get<int>();
     r.settings.height = cam.at("res").at(1).get<int>();
     r.settings.max_depth = j.at("max_depth").get<std::uint32_t>();
@@ -243,6 +245,19 @@ TEST_F(ReferenceTest, DetectsATenPercentAlbedoChange)
     EXPECT_FALSE(cmp.passed()) << "a 10% albedo change went unnoticed";
 }
 
+// The thin-lens reference sees the lens: the same view through a pinhole fails it.
+TEST_F(ReferenceTest, DetectsAMissingLens)
+{
+    GC_SKIP_WITHOUT_EXR_READER();
+    Reference ref = read_reference(reference_json("cornell-sphere-dof"));
+    ASSERT_GT(ref.camera.aperture_radius, 0.0f);
+    ref.camera.aperture_radius = 0.0f;
+    ref.settings.spp = 128;
+    const validation::Rendered got = validation::render(*context, load_scene(ref.scene), ref.camera, ref.settings);
+    const Comparison cmp = compare(got, ref, ref.settings.spp, "cornell-sphere-dof through a pinhole");
+    EXPECT_FALSE(cmp.passed()) << "the pinhole image passed for the thin-lens one";
+}
+
 // 128x128 at 128 spp is 2.1 M samples a scene: 3-13 s each on PoCL with 2 cores (more when the
 // machine is shared). The textured box is cheap (a convex box under a constant sky: every
 // path is one bounce, L = albedo * env), so it gets more samples for its texture edges.
@@ -250,7 +265,7 @@ INSTANTIATE_TEST_SUITE_P(Refs, ReferenceTest,
                          ::testing::Values(RefCase{"cornell-original", 128}, RefCase{"cornell-mirror", 128},
                                            RefCase{"cornell-sphere", 128}, RefCase{"spot-env", 128},
                                            RefCase{"box-textured", 256, true}, RefCase{"normals-bent", 128},
-                                           RefCase{"normals-flipped-glass", 256}),
+                                           RefCase{"normals-flipped-glass", 256}, RefCase{"cornell-sphere-dof", 128}),
                          [](const ::testing::TestParamInfo<RefCase>& param_info) {
                              std::string name = param_info.param.name;
                              for (char& ch : name)

@@ -18,6 +18,10 @@
 #include "host/scene/load.h"
 #include "host/vk/cross_check.h"
 #include "host/vk/raster_pass.h"
+#include "host/vk/compute_reference.h"
+#include "host/image/compare.h"
+#include "host/render/renderer.h"
+#include "host/render/session.h"
 #include "tests/render/alpha_scenes.h"
 #include "tests/vk/vk_test_util.h"
 
@@ -295,6 +299,69 @@ TEST_F(VkDeviceTest, RasterAndOpenClAgreeOnAlphaMaskCutOut)
 
     const CrossCheckReport r = cross_check(*cl_context, *context, scene, bvh, camera, settings);
     std::printf("alpha-mask quad: %s", r.format().c_str());
+    EXPECT_TRUE(r.passed());
+}
+
+}  // namespace
+}  // namespace gc::vk
+
+namespace gc::vk {
+namespace {
+
+// The denoiser's guides (gc_aov_trace.h) follow mirrors and glass in both implementations
+// alike: OpenCL and the Vulkan reference give the same bits on the Cornell spheres.
+TEST_F(VkDeviceTest, DenoiseGuidesAgreeWithOpenCl)
+{
+    std::string why;
+    cl::Context* cl_context = shared_cl_context(&why);
+    if (!cl_context) GTEST_SKIP() << why;
+    SceneRequest request;
+    request.path = std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj";
+    const PreparedScene prepared = prepare_scene(request);
+    for (AovKind kind : {AovKind::GuideAlbedo, AovKind::GuideNormal}) {
+        RenderSettings settings;
+        settings.width = 40;
+        settings.height = 32;
+        settings.integrator = IntegratorKind::Aov;
+        settings.aov = kind;
+        settings.spp = 2;
+        Renderer cl_renderer(*cl_context, prepared.scene, prepared.bvh, prepared.camera, settings);
+        cl_renderer.render(0, settings.spp);
+        ComputeReference reference(*context, prepared.scene, prepared.bvh, prepared.camera, settings);
+        for (std::uint32_t i = 0; i < settings.spp; ++i) reference.render_sample();
+        const Film a = cl_renderer.film(), b = reference.film();
+        std::size_t same = 0;
+        for (std::size_t i = 0; i < a.data().size(); ++i) same += a.data()[i] == b.data()[i];
+        std::printf("%s: %.3f %% of the values bit-identical\n", aov_name(kind), 100.0 * double(same) / double(a.data().size()));
+        const ImageDifference d = compare_images(b, a);
+        EXPECT_LT(d.rel_mse, 1e-5) << aov_name(kind);
+        EXPECT_GT(d.within_tolerance, 0.999) << aov_name(kind);
+    }
+}
+
+}  // namespace
+}  // namespace gc::vk
+
+namespace gc::vk {
+namespace {
+
+// Depth of field is shared camera code: the Vulkan reference and OpenCL agree through a lens.
+TEST_F(VkDeviceTest, ThinLensAgreesWithOpenCl)
+{
+    std::string why;
+    cl::Context* cl_context = shared_cl_context(&why);
+    if (!cl_context) GTEST_SKIP() << why;
+    SceneRequest request;
+    request.path = std::filesystem::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj";
+    request.camera.aperture_radius = 0.1f;
+    request.camera.focus_distance = 3.0f;
+    const PreparedScene prepared = prepare_scene(request);
+    RenderSettings settings;
+    settings.width = 48;
+    settings.height = 40;
+    settings.spp = 4;
+    const CrossCheckReport r = cross_check(*cl_context, *context, prepared.scene, prepared.bvh, prepared.camera, settings);
+    std::printf("thin lens: %s", r.format().c_str());
     EXPECT_TRUE(r.passed());
 }
 

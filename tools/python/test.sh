@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Python package's tests, as ctest's `python` test runs them (label python):
 #   tools/python/test.sh VENV [GEOCOLD_CLI]
-# Creates the virtual environment VENV if needed, installs pytest, numpy and Pillow into it,
+# Creates the virtual environment VENV if needed, installs pytest, numpy, Pillow and pyoidn
+# (gc.denoise) into it,
 # builds and installs the package from this checkout with `pip install .` (scikit-build-core +
 # nanobind from PyPI; the build folder build/python/ is kept, so a re-run rebuilds only what
 # changed; ccache is used when installed), then runs tests/python with the geocold-cl binary
@@ -14,7 +15,7 @@ venv="${1:?usage: test.sh VENV [GEOCOLD_CLI]}"
 if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
 fi
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check pytest numpy Pillow
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check pytest numpy Pillow pyoidn
 
 config=()
 if command -v ccache >/dev/null; then

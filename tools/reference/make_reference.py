@@ -15,6 +15,7 @@ variance file, the exact command and the render time. See README.md.
 from __future__ import annotations
 
 import argparse
+import math
 import json
 import os
 import shlex
@@ -53,6 +54,8 @@ def parse_args(argv):
     p.add_argument("--look-at", type=_triple)
     p.add_argument("--up", type=_triple)
     p.add_argument("--fov", type=float, help="full vertical field of view, degrees")
+    p.add_argument("--aperture", type=float, help="thin lens: aperture radius (Mitsuba's thinlens)")
+    p.add_argument("--focus-distance", type=float, help="thin lens: distance of the plane in focus")
     p.add_argument("--res", type=_res, help="WIDTHxHEIGHT")
     p.add_argument("--spp", type=int)
     p.add_argument("--max-depth", type=int)
@@ -76,10 +79,14 @@ def resolve_settings(args):
             cfg = json.load(f)
     cam = dict(cfg.get("camera", {}))
     for key, value in (("look_from", args.look_from), ("look_at", args.look_at), ("up", args.up),
-                       ("fov", args.fov), ("res", args.res)):
+                       ("fov", args.fov), ("res", args.res), ("aperture_radius", args.aperture),
+                       ("focus_distance", args.focus_distance)):
         if value is not None:
             cam[key] = value
     cam.setdefault("up", [0.0, 1.0, 0.0])
+    if cam.get("aperture_radius", 0) > 0 and "focus_distance" not in cam and "look_at" in cam:
+        # geocold-cl's default: in focus at the look-at point (the view axis runs through it).
+        cam["focus_distance"] = math.dist(cam["look_from"], cam["look_at"])
     missing = [k for k in ("look_from", "look_at", "fov", "res") if k not in cam]
     if missing:
         raise SystemExit(f"error: camera incomplete, missing {', '.join(missing)} (give --config or the flags)")
@@ -175,7 +182,8 @@ def main(argv=None):
     meta = {
         "image": os.path.basename(out),
         "scene": os.path.relpath(scene_path, os.path.dirname(out)),
-        "camera": {k: cam[k] for k in ("look_from", "look_at", "up", "fov", "res")},
+        "camera": {k: cam[k] for k in ("look_from", "look_at", "up", "fov", "res", "aperture_radius",
+                                        "focus_distance") if k in cam},
         "spp": spp,
         "max_depth": max_depth,
         "env": env,

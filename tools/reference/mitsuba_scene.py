@@ -136,7 +136,11 @@ def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0) -> mi.
         "type": "scene",
         "integrator": {"type": "path", "max_depth": int(max_depth)},
         "sensor": {
-            "type": "perspective",
+            # Mitsuba's thinlens: the plane in focus at focus_distance along the view axis, as
+            # geocold-cl's gc_camera_sample.
+            **({"type": "thinlens", "aperture_radius": float(camera["aperture_radius"]),
+                "focus_distance": float(camera["focus_distance"])}
+               if camera.get("aperture_radius", 0) > 0 else {"type": "perspective"}),
             "fov": float(camera["fov"]),
             "fov_axis": "y",
             "to_world": mi.ScalarTransform4f().look_at(
