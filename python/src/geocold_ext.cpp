@@ -259,7 +259,29 @@ AovKind parse_aov(const std::string& text)
     throw UsageError("aov must be one of preview, albedo, normal, depth, primid, guide-albedo, guide-normal, not '" + text + "'");
 }
 
-// gc.Renderer: a context on one device, the scene uploaded to it, a Renderer over it.
+// The settings both gc.Renderer and gc.render_frame take, checked as the CLI checks them.
+RenderSettings render_settings(const std::string& integrator, const std::string& aov, int width, int height,
+                               std::uint32_t spp, std::uint32_t seed, std::uint32_t max_depth, std::uint32_t rr_depth,
+                               const Vec3Tuple& env, const std::string& env_map)
+{
+    if (width < 1 || height < 1 || width > 65536 || height > 65536)
+        throw UsageError("res must be two sizes in [1, 65536], not (" + std::to_string(width) + ", " +
+                         std::to_string(height) + ")");
+    if (max_depth < 1) throw UsageError("max_depth must be at least 1");
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.integrator = parse_integrator(integrator);
+    settings.aov = parse_aov(aov);
+    settings.spp = spp;
+    settings.seed = seed;
+    settings.max_depth = max_depth;
+    settings.rr_depth = rr_depth;
+    settings.env_radiance = colour("env", env, false);
+    settings.env_map_path = env_map;
+    return settings;
+}
+
 // One frame on several devices at once (host/render/multi_device.h): chunks of chunk_samples
 // samples, added in chunk order, so devices of one kind give the bits of one. Returns the mean
 // of samples [first, end) (or of the prefix a time limit left) and its sample count. The
@@ -273,23 +295,11 @@ std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState
                                                       std::uint32_t max_depth, std::uint32_t rr_depth,
                                                       const Vec3Tuple& env, const std::string& env_map, double time_limit)
 {
-    if (width < 1 || height < 1 || width > 65536 || height > 65536)
-        throw UsageError("res must be two sizes in [1, 65536]");
-    if (max_depth < 1) throw UsageError("max_depth must be at least 1");
     if (time_limit < 0.0 || !std::isfinite(time_limit))
         throw UsageError("time_limit must be a non-negative number of seconds");
     if (device_specs.empty()) throw UsageError("devices must name at least one device");
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.integrator = parse_integrator(integrator);
-    settings.aov = parse_aov(aov);
-    settings.spp = end;
-    settings.seed = seed;
-    settings.max_depth = max_depth;
-    settings.rr_depth = rr_depth;
-    settings.env_radiance = colour("env", env, false);
-    settings.env_map_path = env_map;
+    const RenderSettings settings =
+        render_settings(integrator, aov, width, height, end, seed, max_depth, rr_depth, env, env_map);
     const ChunkPlan plan = ChunkPlan::for_range(first, end, chunk_samples);
     const RenderSetup setup = python_render_setup();
 
@@ -345,28 +355,16 @@ std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState
     return {film_array(std::move(mean)), result.end_sample - first};
 }
 
+// gc.Renderer: a context on one device, the scene uploaded to it, a Renderer over it.
 class PyRenderer {
 public:
     PyRenderer(std::shared_ptr<SceneState> scene, const std::string& device, const std::string& integrator,
                const std::string& aov, int width, int height, std::uint32_t spp, std::uint32_t seed,
                std::uint32_t max_depth, std::uint32_t rr_depth, const Vec3Tuple& env, const std::string& env_map,
                std::uint32_t samples_per_pass, std::uint32_t wavefront_size)
-        : m_state(std::move(scene))
+        : m_state(std::move(scene)),
+          m_settings(render_settings(integrator, aov, width, height, spp, seed, max_depth, rr_depth, env, env_map))
     {
-        if (width < 1 || height < 1 || width > 65536 || height > 65536)
-            throw UsageError("res must be two sizes in [1, 65536], not (" + std::to_string(width) + ", " +
-                             std::to_string(height) + ")");
-        if (max_depth < 1) throw UsageError("max_depth must be at least 1");
-        m_settings.width = width;
-        m_settings.height = height;
-        m_settings.integrator = parse_integrator(integrator);
-        m_settings.aov = parse_aov(aov);
-        m_settings.spp = spp;
-        m_settings.seed = seed;
-        m_settings.max_depth = max_depth;
-        m_settings.rr_depth = rr_depth;
-        m_settings.env_radiance = colour("env", env, false);
-        m_settings.env_map_path = env_map;
         m_settings.samples_per_pass = samples_per_pass;
         m_settings.wavefront_size = wavefront_size;
         const RenderSetup setup = python_render_setup();

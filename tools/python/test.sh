@@ -9,8 +9,8 @@
 # GEOCOLD_CLI to compare against.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
-venv="${1:?usage: test.sh VENV [GEOCOLD_CLI]}"
-[ $# -ge 2 ] && export GEOCOLD_CLI="$2"
+venv="$(realpath -m "${1:?usage: test.sh VENV [GEOCOLD_CLI]}")"
+[ $# -ge 2 ] && export GEOCOLD_CLI="$(realpath "$2")"
 
 if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
