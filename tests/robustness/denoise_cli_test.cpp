@@ -40,6 +40,11 @@ TEST(DenoiseCli, WithoutTheLibraryItFailsBeforeRenderingAndWritesNothing)
 
 TEST(DenoiseCli, WithTheLibraryItWritesTheDenoisedImage)
 {
+#if defined(__SANITIZE_ADDRESS__)
+    // OIDN's TBB loads its helper with RTLD_DEEPBIND, which the AddressSanitizer runtime
+    // refuses (google/sanitizers#611); the release build runs this test.
+    GTEST_SKIP() << "Open Image Denoise cannot be loaded under AddressSanitizer (RTLD_DEEPBIND)";
+#endif
     std::string why;
     if (!denoiser_available({}, &why)) GTEST_SKIP() << why;
     if (!have_cpu_device()) GTEST_SKIP() << "no OpenCL CPU device";
