@@ -37,7 +37,7 @@ void add_vec3(cl::Fnv1a& h, const glm::vec3& v)
 std::uint64_t scene_content_hash(const Scene& scene)
 {
     cl::Fnv1a h;
-    h.add_field("geocold scene v1");
+    h.add_field("geocold scene v2");
     add_value(h, std::uint64_t(scene.positions.size()));
     for (const Point3& p : scene.positions) add_vec3(h, glm::vec3(p.x, p.y, p.z));
     add_value(h, std::uint64_t(scene.normals.size()));
@@ -67,6 +67,13 @@ std::uint64_t scene_content_hash(const Scene& scene)
         add_value(h, m.normal_texture);
         add_value(h, m.normal_scale);
         add_value(h, m.emission_texture);
+        for (const UvTransform* t : {&m.albedo_uv, &m.metallic_roughness_uv, &m.normal_uv, &m.emission_uv}) {
+            add_value(h, t->offset.x);
+            add_value(h, t->offset.y);
+            add_value(h, t->rotation);
+            add_value(h, t->scale.x);
+            add_value(h, t->scale.y);
+        }
     }
     add_value(h, std::uint64_t(scene.textures.size()));
     for (const Texture& t : scene.textures) {
@@ -89,7 +96,7 @@ std::uint64_t scene_content_hash(const Scene& scene)
 std::uint64_t render_options_hash(const RenderSettings& settings, const Camera& camera, std::uint32_t chunk_samples)
 {
     cl::Fnv1a h;
-    h.add_field("geocold options v1");
+    h.add_field("geocold options v2");
     add_value(h, settings.width);
     add_value(h, settings.height);
     add_value(h, settings.max_depth);
@@ -102,6 +109,8 @@ std::uint64_t render_options_hash(const RenderSettings& settings, const Camera& 
     add_vec3(h, glm::vec3(camera.look_at.x, camera.look_at.y, camera.look_at.z));
     add_vec3(h, glm::vec3(camera.up.x, camera.up.y, camera.up.z));
     add_value(h, camera.vfov_degrees);
+    add_value(h, camera.aperture_radius);
+    add_value(h, camera.focus_distance);
     if (!settings.env_map_path.empty()) {
         std::ifstream in(settings.env_map_path, std::ios::binary);
         if (!in) throw InputError("cannot read environment map '" + settings.env_map_path + "' to hash it");
