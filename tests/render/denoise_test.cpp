@@ -15,6 +15,7 @@
 #include "host/render/session.h"
 #include "host/util/error.h"
 #include "tests/cl/cl_test_util.h"
+#include "tests/render/cornell_request.h"
 
 namespace gc {
 namespace {
@@ -51,12 +52,7 @@ protected:
         if (!denoiser_available({}, &why)) GTEST_SKIP() << why;
         cl::test::DeviceTest::SetUp();
         if (IsSkipped()) return;
-        SceneRequest request;
-        request.path = fs::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Original.obj";
-        request.camera.look_from = Point3(0, 1, 3.9f);
-        request.camera.look_at = Point3(0, 1, 0);
-        request.camera.fov = 39.3077f;
-        const PreparedScene prepared = prepare_scene(request);
+        const PreparedScene prepared = prepare_scene(test::cornell_request("CornellBox-Original.obj"));
         scene = std::make_shared<DeviceScene>(DeviceScene::upload(*context, prepared.scene, prepared.bvh));
         camera = prepared.camera;
     }
@@ -111,12 +107,7 @@ class GuideRender : public cl::test::DeviceTest {};
 TEST_F(GuideRender, GuidesSeeThroughMirrorsAndGlass)
 {
     if (IsSkipped()) return;
-    SceneRequest request;
-    request.path = fs::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Sphere.obj";
-    request.camera.look_from = Point3(0, 1, 3.9f);
-    request.camera.look_at = Point3(0, 1, 0);
-    request.camera.fov = 39.3077f;
-    const PreparedScene prepared = prepare_scene(request);
+    const PreparedScene prepared = prepare_scene(test::cornell_request("CornellBox-Sphere.obj"));
     auto scene = std::make_shared<DeviceScene>(DeviceScene::upload(*context, prepared.scene, prepared.bvh));
     auto aov = [&](AovKind kind) {
         RenderSettings s;

@@ -14,6 +14,7 @@
 #include "host/render/session.h"
 #include "host/util/error.h"
 #include "tests/cl/cl_test_util.h"
+#include "tests/render/cornell_request.h"
 
 namespace gc {
 namespace {
@@ -22,16 +23,6 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-SceneRequest cornell_box()
-{
-    SceneRequest request;
-    request.path = fs::path(GC_TEST_SOURCE_DIR) / "scenes/cornell-box/CornellBox-Original.obj";
-    request.camera.look_from = Point3(0, 1, 3.9f);
-    request.camera.look_at = Point3(0, 1, 0);
-    request.camera.fov = 39.3077f;
-    return request;
-}
 
 RenderSettings small_path(std::uint32_t spp)
 {
@@ -67,7 +58,7 @@ protected:
     {
         cl::test::DeviceTest::SetUp();
         if (IsSkipped()) return;
-        prepared = prepare_scene(cornell_box());
+        prepared = prepare_scene(test::cornell_request());
         scene = std::make_shared<DeviceScene>(DeviceScene::upload(*context, prepared.scene, prepared.bvh));
     }
 
