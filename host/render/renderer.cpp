@@ -53,8 +53,7 @@ Renderer::Renderer(const cl::Context& context, std::shared_ptr<const DeviceScene
     if (settings.env_map_path != m_scene->env_source)
         throw UsageError("the render asks for the environment map '" + settings.env_map_path +
                          "' but the device scene was uploaded with '" + m_scene->env_source + "'");
-    m_params = make_render_params(m_scene->summary, camera, settings);
-    set_environment_map(m_params, settings, m_scene->env_width, m_scene->env_height);
+    update_params();
     const std::uint32_t pixels = m_params.width * m_params.height;
     m_film.sums = film_buffer(context, pixels, "film");
     m_film.squares = film_buffer(context, pixels, "film squares");
@@ -82,7 +81,7 @@ void Renderer::clear(std::uint32_t next_sample)
 void Renderer::set_camera(const Camera& camera)
 {
     m_camera = camera;
-    m_params.camera = make_camera(camera, m_settings.width, m_settings.height);
+    update_params();
     clear();
 }
 
@@ -96,11 +95,14 @@ void Renderer::follow_scene_updates()
         m_integrator = make_integrator(m_context, *m_scene, m_settings, m_setup, m_batch_pixels);
         m_program_features = m_scene->features;
     }
-    const dev::GcRenderParams fresh = make_render_params(m_scene->summary, m_camera, m_settings);
-    m_params.num_emitters = fresh.num_emitters;
-    m_params.emitter_power = fresh.emitter_power;
-    m_params.num_textures = fresh.num_textures;
+    update_params();
     clear();
+}
+
+void Renderer::update_params()
+{
+    m_params = make_render_params(m_scene->summary, m_camera, m_settings);
+    set_environment_map(m_params, m_settings, m_scene->env_width, m_scene->env_height);
 }
 
 void Renderer::render(std::uint32_t first_sample, std::uint32_t count)

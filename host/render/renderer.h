@@ -111,6 +111,9 @@ public:
 private:
     // Restarts the film and rebuilds what a scene update made stale.
     void follow_scene_updates();
+    // The kernels' parameters from the scene, the camera and the settings (the per-pass
+    // fields are set by render_samples).
+    void update_params();
 
     const cl::Context& m_context;
     std::shared_ptr<const DeviceScene> m_scene;
