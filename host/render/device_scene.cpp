@@ -42,7 +42,7 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     d.env_width = environment.width;
     d.env_height = environment.height;
     d.env_source = environment.source;
-    d.summary = summarize(scene);
+    d.summary = summarize(scene, emitters, textures.textures.size());
     d.feature_set = tuning.kernel_features;
     d.features = kernel_features(materials, lights.size(), environment.width > 0, tuning.kernel_features);
     return d;
@@ -69,7 +69,7 @@ void DeviceScene::update_materials(const cl::Context& context, const Scene& scen
     const std::vector<dev::GcEmitter> new_emitters = make_emitters(scene);
     emitters = cl::read_only_buffer(context, new_emitters, "emitters");
     emitter_count = static_cast<std::uint32_t>(new_emitters.size());
-    summary = summarize(scene);
+    summary = summarize(scene, new_emitters, new_views.size());
     features = kernel_features(new_materials, point_light_count, env_width > 0, feature_set);
     ++revision;
 }

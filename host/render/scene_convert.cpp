@@ -298,25 +298,32 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene)
     return out;
 }
 
-float total_emitter_power(const Scene& scene)
+float total_emitter_power(const Scene& scene, std::span<const dev::GcEmitter> emitters)
 {
     double total = 0.0;
-    for (const dev::GcEmitter& e : make_emitters(scene)) {
+    for (const dev::GcEmitter& e : emitters) {
         const glm::vec3 le = scene.materials[scene.material_ids[e.triangle]].emission;
         total += static_cast<double>(e.area) * dev::gc_luminance(le);
     }
     return static_cast<float>(total);
 }
 
-SceneSummary summarize(const Scene& scene)
+float total_emitter_power(const Scene& scene) { return total_emitter_power(scene, make_emitters(scene)); }
+
+SceneSummary summarize(const Scene& scene, std::span<const dev::GcEmitter> emitters, std::size_t texture_views)
 {
     SceneSummary summary;
     summary.triangles = static_cast<std::uint32_t>(scene.triangle_count());
-    summary.emitters = static_cast<std::uint32_t>(make_emitters(scene).size());
+    summary.emitters = static_cast<std::uint32_t>(emitters.size());
     summary.point_lights = static_cast<std::uint32_t>(scene.point_lights.size());
-    summary.textures = static_cast<std::uint32_t>(texture_views(scene).views.size());
-    summary.emitter_power = total_emitter_power(scene);
+    summary.textures = static_cast<std::uint32_t>(texture_views);
+    summary.emitter_power = total_emitter_power(scene, emitters);
     return summary;
+}
+
+SceneSummary summarize(const Scene& scene)
+{
+    return summarize(scene, make_emitters(scene), texture_views(scene).views.size());
 }
 
 dev::GcRenderParams make_render_params(const SceneSummary& scene, const Camera& camera, const RenderSettings& settings)

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "gc_types.h"
@@ -54,6 +55,8 @@ std::vector<dev::GcEmitter> make_emitters(const Scene& scene);
 // Sum over emitters of area * luminance(emission): the normalisation of the light pdf the
 // kernels compute (gc_light_pdf_w), consistent with make_emitters' selection probabilities.
 float total_emitter_power(const Scene& scene);
+// The same for the emitters make_emitters(scene) made, without making them again.
+float total_emitter_power(const Scene& scene, std::span<const dev::GcEmitter> emitters);
 
 // What the kernels' parameter block says about a scene: its counts and the light pdf's
 // normalisation. Kept by a device scene, so that a render needs no host scene.
@@ -65,6 +68,8 @@ struct SceneSummary {
     float emitter_power = 0.0f;  // total_emitter_power
 };
 SceneSummary summarize(const Scene& scene);
+// The same from the emitters and texture views already made for an upload.
+SceneSummary summarize(const Scene& scene, std::span<const dev::GcEmitter> emitters, std::size_t texture_views);
 
 // The kernels' parameter block for a whole-image pass; the renderer then sets the batch
 // (pixel_offset/pixel_count) and sample_index per pass. Shared by the OpenCL and Vulkan paths.
