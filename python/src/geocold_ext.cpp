@@ -228,10 +228,13 @@ nb::dict camera_fields(const Camera& c)
     d["look_at"] = Vec3Tuple{c.look_at.x, c.look_at.y, c.look_at.z};
     d["up"] = Vec3Tuple{c.up.x, c.up.y, c.up.z};
     d["fov"] = c.vfov_degrees;
+    d["aperture"] = c.aperture_radius;
+    d["focus_distance"] = c.focus_distance;
     return d;
 }
 
-void set_camera(SceneState& s, const Vec3Tuple& from, const Vec3Tuple& at, const Vec3Tuple& up, float fov)
+void set_camera(SceneState& s, const Vec3Tuple& from, const Vec3Tuple& at, const Vec3Tuple& up, float fov,
+                float aperture, float focus_distance)
 {
     const std::lock_guard<std::mutex> lock(s.mutex);
     CameraOverrides o;
@@ -239,10 +242,13 @@ void set_camera(SceneState& s, const Vec3Tuple& from, const Vec3Tuple& at, const
     o.look_at = Point3(std::get<0>(at), std::get<1>(at), std::get<2>(at));
     o.up = Vec3(std::get<0>(up), std::get<1>(up), std::get<2>(up));
     o.fov = fov;
+    o.aperture_radius = aperture;
+    o.focus_distance = focus_distance;
     for (float v : {std::get<0>(from), std::get<1>(from), std::get<2>(from), std::get<0>(at), std::get<1>(at),
-                    std::get<2>(at), std::get<0>(up), std::get<1>(up), std::get<2>(up), fov})
+                    std::get<2>(at), std::get<0>(up), std::get<1>(up), std::get<2>(up), fov, aperture, focus_distance})
         check_finite("camera", v);
-    // The same checks as the CLI's --look-from/--look-at/--up/--fov (UsageError).
+    // The same checks as the CLI's --look-from/--look-at/--up/--fov/--aperture/--focus-distance
+    // (UsageError).
     s.prepared.camera = resolve_camera(s.prepared.scene, o);
     ++s.camera_revision;
 }
@@ -640,7 +646,7 @@ NB_MODULE(_geocold, m)
     m.def("devices", &devices);
     m.def("load", &load, "path"_a, "gltf_scene"_a = -1, "phong_as_lambert"_a = false);
     m.def("write", &write_file, "path"_a, "image"_a, "device"_a, "integrator"_a, "scene"_a, "spp"_a, "seconds"_a, "seed"_a,
-          "tonemap"_a = "clamp", "exposure"_a = 0.0f);
+          "tonemap"_a = "pbr-neutral", "exposure"_a = 0.0f);
     m.def("read", &read_file, "path"_a);
     m.def("cli_main", &cli_main, "args"_a);
     m.def("render_frame", &render_frame_on, "scene"_a, "devices"_a, "integrator"_a, "aov"_a, "width"_a, "height"_a,
