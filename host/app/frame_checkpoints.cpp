@@ -1,5 +1,6 @@
 #include "host/app/frame_checkpoints.h"
 
+#include <cstdio>
 #include <utility>
 
 #include "host/image/image_io.h"
@@ -20,8 +21,11 @@ FrameCheckpoints::FrameCheckpoints(const Options& options, std::filesystem::path
     : m_every_seconds(options.checkpoint_seconds), m_output(std::move(output)), m_partial(checkpoint_path(m_output)),
       m_header(std::move(header)), m_meta(std::move(meta)), m_display(display)
 {
-    if (m_every_seconds > 0) log_info("checkpoints every " + std::to_string(int(m_every_seconds)) + " s to " +
-                                      m_output.string() + " and " + m_partial.string());
+    if (m_every_seconds > 0) {
+        char every[32];
+        std::snprintf(every, sizeof every, "%g", m_every_seconds);
+        log_info(std::string("checkpoints every ") + every + " s to " + m_output.string() + " and " + m_partial.string());
+    }
     if (options.resume_path.empty()) return;
     const std::filesystem::path file = options.resume_path;
     if (std::filesystem::weakly_canonical(file) == std::filesystem::weakly_canonical(m_output))
@@ -44,8 +48,15 @@ Checkpointing FrameCheckpoints::while_rendering() const
     c.write = [this](const FrameCheckpoint& checkpoint) {
         ImageMetadata meta = m_meta;
         meta.spp = checkpoint.samples(m_header.chunk_samples);
-        write_image(m_output, mean_film(checkpoint.frame()), meta, m_display);
-        write_partial(checkpoint, m_header.device);
+        // A checkpoint that cannot be written (a full disk) leaves the last one whole and the
+        // render going: the final write says whether the output can be written at all.
+        try {
+            write_image(m_output, mean_film(checkpoint.frame()), meta, m_display);
+            write_partial(checkpoint, m_header.device);
+        } catch (const OutputError& e) {
+            log_warning(std::string("checkpoint not written: ") + e.what());
+            return;
+        }
         log_verbose("checkpoint: " + std::to_string(meta.spp) + " spp in " + m_output.string() + " and " +
                     m_partial.string());
     };

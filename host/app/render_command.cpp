@@ -218,7 +218,7 @@ ExitCode run_render(const Options& options)
         write_image(output, image, meta, display);
         checkpoints.write_final(resumed.complete, meta.device);
         if (!options.aovs.empty() && outcome.cancelled) log_warning("interrupted: no AOV layers written");
-        if (!options.aovs.empty() && !outcome.cancelled)
+        if (!options.aovs.empty() && !outcome.cancelled && samples > 0)
             write_aov_layers(options.aovs, devices.front(), prepared, settings, setup, frame.sums, meta, output);
     }
     prepared = PreparedScene{};
