@@ -89,7 +89,7 @@ void write_header(Bytes& w, const ExrPart& part, const std::vector<const ExrChan
 std::string encode_exr(std::uint32_t width, std::uint32_t height, const std::vector<ExrPart>& parts)
 {
     if (parts.empty()) throw UsageError("an EXR file needs at least one part");
-    const bool multipart = parts.size() > 1;
+    const bool multipart = parts.size() > 1 || !parts.front().name.empty();
     const std::size_t pixels = std::size_t(width) * height;
     std::set<std::string> names;
     for (const ExrPart& p : parts) {

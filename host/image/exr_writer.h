@@ -3,8 +3,8 @@
 // no OpenImageIO, so the bare GPU build writes partial images (partial_image.h) and AOV layers
 // (aov_layers.h) too; any EXR reader opens its files.
 //
-// One part is written as a plain single-part file (its name left out); several parts as a
-// multi-part file whose parts are named, in the order given.
+// One unnamed part is written as a plain single-part file; named parts (one or more) as a
+// multi-part file, in the order given, so a layer keeps its name even when it is alone.
 #pragma once
 
 #include <cstdint>
@@ -25,13 +25,13 @@ struct ExrChannel {
 };
 
 struct ExrPart {
-    std::string name;                 // multi-part files only ("albedo", "depth", ...)
+    std::string name;                 // "albedo", "depth", ...; empty: a single-part file
     std::vector<ExrChannel> channels; // any order: EXR stores them sorted by name
     std::vector<std::pair<std::string, std::string>> text;  // string attributes, in this order
 };
 
-// The file's bytes. Throws UsageError for no parts, channel data of the wrong size, or a
-// multi-part file with an unnamed or repeated part name.
+// The file's bytes. Throws UsageError for no parts, channel data of the wrong size, or
+// several parts with an empty or repeated name.
 std::string encode_exr(std::uint32_t width, std::uint32_t height, const std::vector<ExrPart>& parts);
 
 // encode_exr, written atomically; OutputError naming the file on failure.

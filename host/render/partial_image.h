@@ -12,7 +12,8 @@
 //   geocold:partial        "1"
 //   geocold:scene_hash     content of the scene and its files (frame_hash.h), 16 hex digits
 //   geocold:options_hash   the image-changing render options, 16 hex digits
-//   geocold:seed, geocold:chunk_samples, geocold:sample_range ("A:B"), geocold:chunks ("4,5,6")
+//   geocold:seed, geocold:chunk_samples, geocold:sample_range ("A:B"), geocold:chunks ("4,5,6";
+//                          a checkpoint's "0-5,6")
 //   geocold:device, geocold:integrator, geocold:scene (the file as given), Software (version)
 // geocold-cl writes it with its own EXR code (exr_writer.h) and reads it with its own code (no
 // OpenImageIO needed, so the bare GPU build writes partials too); writes are atomic: a reader

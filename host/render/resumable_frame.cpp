@@ -88,8 +88,10 @@ ResumedFrame render_frame_from(const std::vector<cl::DeviceInfo>& devices, const
     ResumedFrame out;
     if (resumed < plan.end_sample) {
         const ChunkPlan rest = ChunkPlan::for_range(resumed, plan.end_sample, plan.chunk_samples);
+        FrameControl rest_control = control;  // progress over the whole frame, resumed samples included
+        if (control.on_progress) rest_control.on_progress = [&](std::uint64_t done) { control.on_progress(resumed + done); };
         out.frame.outcome = render_chunks(
-            devices, prepared, settings, setup, rest, control,
+            devices, prepared, settings, setup, rest, rest_control,
             [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
                 if (!complete) return frame.add_truncated(range, std::move(sums));
                 if (range.count < plan.chunk_samples) tail = PartialChunk{range, std::move(sums)};
