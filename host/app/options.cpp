@@ -291,8 +291,9 @@ Several devices and machines (a frame is a fixed list of chunks of samples):
                            images merge only with the same chunk size
       --checkpoint-every SEC
                            every SEC seconds (at the next complete chunk) and when the
-                           render ends or is stopped, write the output so far and
-                           <output name>.partial.exr: its complete chunks, for --resume
+                           render ends or is stopped (Ctrl-C, SIGTERM, --time-limit),
+                           write the output so far and <output name>.partial.exr: its
+                           complete chunks, for --resume
       --resume PART.exr    go on from a checkpoint or a --samples 0:B partial image to
                            --spp: the bits of an uninterrupted render; refuses another
                            scene, options, seed, size or chunk size (exit 3)

@@ -145,8 +145,9 @@ ExitCode run_render(const Options& options)
 
     install_interrupt_handler();
     // A partial render is a farm's task: SIGTERM (preemption, scancel) stops it like Ctrl-C,
-    // and an interrupted partial render writes nothing.
-    if (options.partial) install_termination_handler();
+    // and an interrupted partial render writes nothing. So may a checkpointed one be, which
+    // then writes its checkpoint.
+    if (options.partial || options.checkpoint_seconds > 0) install_termination_handler();
     ProgressBar::Options progress_options;
     progress_options.quiet = options.quiet;
     progress_options.unit = "spp";

@@ -1,6 +1,6 @@
 // --checkpoint-every and --resume end to end through the real geocold-cl: a render resumed
-// from its checkpoint (a finished one, one written mid-render, the one Ctrl-C leaves, a
-// --samples 0:B partial) has the bits of the render done in one go; a checkpoint of another
+// from its checkpoint (a finished one, one written mid-render, the one Ctrl-C or SIGTERM
+// leaves, a --samples 0:B partial) has the bits of the render done in one go; a checkpoint of another
 // frame, or a damaged one, is refused naming the file and what differs, and nothing is written.
 #include <csignal>
 #include <cstdio>
@@ -90,39 +90,47 @@ TEST_F(ResumeCli, GoesOnToMoreSamplesBitForBit)
     EXPECT_EQ(differing_bytes(dir / "resumed-samples.pfm", dir / "direct.pfm"), 0u);
 }
 
-TEST_F(ResumeCli, ACheckpointFromMidRenderAndFromCtrlCResumeToTheSameBits)
+// Ctrl-C, and SIGTERM (a farm's preemption), stop a checkpointed render with a checkpoint.
+TEST_F(ResumeCli, ACheckpointFromMidRenderAndFromAStopResumeToTheSameBits)
 {
     const std::string spp = "4000";
     const std::vector<std::string> frame = {k_cornell.string(), "--device", "cpu", "--res", "12x8", "--chunk-samples",
                                             "4", "--max-depth", "3", "--spp", spp};
-    std::vector<std::string> args = frame;
-    for (const char* a : {"-v", "--checkpoint-every", "0.05", "-o"}) args.push_back(a);
-    args.push_back((dir / "mid.pfm").string());
-    bool copied = false;
-    const RunResult r = run_on_terminal(cli_path(), args, cli_options(), [&](int pid, const std::string& so_far) {
-        // The log line comes after both files of the checkpoint are in place.
-        if (!copied && so_far.find("checkpoint: ") != std::string::npos) {
-            fs::copy_file(dir / "mid.partial.exr", dir / "early.exr");
-            copied = true;
-            ::kill(pid, SIGINT);
-        }
-    });
-    std::printf("  -> %s after %.2f s\n", r.describe().c_str(), r.seconds);
-    ASSERT_TRUE(copied) << "no checkpoint seen:\n" << r.out;
-    EXPECT_EQ(r.exit_code, 130) << "the render ended before the interrupt; make it longer\n" << r.out;
-    EXPECT_NE(r.out.find("wrote checkpoint"), std::string::npos) << r.out;
-
     std::vector<std::string> direct = frame;
     for (const std::string& a : {std::string("--quiet"), std::string("-o"), (dir / "direct.pfm").string()}) direct.push_back(a);
     ASSERT_EQ(run(direct).exit_code, 0);
-    for (const char* from : {"early.exr", "mid.partial.exr"}) {
-        std::vector<std::string> resume = frame;
-        const fs::path out = dir / (std::string("from-") + from + ".pfm");
-        for (const std::string& a : {std::string("--quiet"), std::string("--resume"), (dir / from).string(), std::string("-o"), out.string()})
-            resume.push_back(a);
-        const RunResult rr = run(resume);
-        ASSERT_EQ(rr.exit_code, 0);
-        EXPECT_EQ(differing_bytes(out, dir / "direct.pfm"), 0u) << from;
+
+    for (const int signal : {SIGINT, SIGTERM}) {
+        SCOPED_TRACE(signal == SIGINT ? "SIGINT" : "SIGTERM");
+        const std::string name = signal == SIGINT ? "int" : "term";
+        std::vector<std::string> args = frame;
+        for (const char* a : {"-v", "--checkpoint-every", "0.05", "-o"}) args.push_back(a);
+        args.push_back((dir / (name + ".pfm")).string());
+        const fs::path partial = dir / (name + ".partial.exr");
+        const fs::path early = dir / (name + "-early.exr");
+        bool copied = false;
+        const RunResult r = run_on_terminal(cli_path(), args, cli_options(), [&](int pid, const std::string& so_far) {
+            // The log line comes after both files of the checkpoint are in place.
+            if (!copied && so_far.find("checkpoint: ") != std::string::npos) {
+                fs::copy_file(partial, early);
+                copied = true;
+                ::kill(pid, signal);
+            }
+        });
+        std::printf("  -> %s after %.2f s\n", r.describe().c_str(), r.seconds);
+        ASSERT_TRUE(copied) << "no checkpoint seen:\n" << r.out;
+        EXPECT_EQ(r.exit_code, 130) << "the render ended before the signal; make it longer\n" << r.out;
+        EXPECT_NE(r.out.find("wrote checkpoint"), std::string::npos) << r.out;
+
+        for (const fs::path& from : {early, partial}) {
+            std::vector<std::string> resume = frame;
+            const fs::path out = dir / ("from-" + from.stem().string() + ".pfm");
+            for (const std::string& a : {std::string("--resume"), from.string(), std::string("-o"), out.string()})
+                resume.push_back(a);
+            const RunResult rr = run(resume);
+            ASSERT_EQ(rr.exit_code, 0);
+            EXPECT_EQ(differing_bytes(out, dir / "direct.pfm"), 0u) << from;
+        }
     }
 }
 
