@@ -7,13 +7,15 @@
 #include <map>
 #include <optional>
 
+#include "host/app/aov_output.h"
 #include "host/app/environment.h"
+#include "host/app/frame_checkpoints.h"
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
+#include "host/app/partial_header.h"
 #include "host/cl/device.h"
 #include "host/image/denoise.h"
 #include "host/image/image_io.h"
-#include "host/render/frame_hash.h"
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
 #include "host/render/denoise_guides.h"
@@ -143,8 +145,9 @@ ExitCode run_render(const Options& options)
 
     install_interrupt_handler();
     // A partial render is a farm's task: SIGTERM (preemption, scancel) stops it like Ctrl-C,
-    // and an interrupted partial render writes nothing.
-    if (options.partial) install_termination_handler();
+    // and an interrupted partial render writes nothing. So may a checkpointed one be, which
+    // then writes its checkpoint.
+    if (options.partial || options.checkpoint_seconds > 0) install_termination_handler();
     ProgressBar::Options progress_options;
     progress_options.quiet = options.quiet;
     progress_options.unit = "spp";
@@ -164,17 +167,7 @@ ExitCode run_render(const Options& options)
     std::uint32_t samples = 0;
     const RenderSetup setup = render_setup_from_environment();
     if (options.partial) {
-        PartialImage part;
-        part.width = std::uint32_t(settings.width);
-        part.height = std::uint32_t(settings.height);
-        part.scene_hash = hash_text(scene_content_hash(prepared.scene));
-        part.options_hash = hash_text(render_options_hash(settings, prepared.camera, plan.chunk_samples));
-        part.seed = settings.seed;
-        part.chunk_samples = plan.chunk_samples;
-        part.first_sample = plan.first_sample;
-        part.end_sample = plan.end_sample;
-        part.integrator = meta.integrator;
-        part.scene = meta.scene;
+        PartialImage part = partial_image_header(prepared, settings, plan, meta);
         std::map<std::uint32_t, PartialChunk> chunks;
         outcome = render_chunks(devices, prepared, settings, setup, plan, control,
                                 [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
@@ -196,7 +189,12 @@ ExitCode run_render(const Options& options)
         if (part.chunks.empty()) throw DeviceError("the time limit ended the render before any chunk was complete");
         write_partial_image(output, part);
     } else {
-        FrameResult frame = render_frame(devices, prepared, settings, setup, plan, control);
+        const DisplayTransform display = display_transform(options, settings, output);
+        FrameCheckpoints checkpoints(options, output, partial_image_header(prepared, settings, plan, meta), meta, display);
+        control.with_squares = std::any_of(options.aovs.begin(), options.aovs.end(), needs_squares);
+        ResumedFrame resumed = render_frame_from(devices, prepared, settings, setup, plan, control,
+                                                 checkpoints.take_start(), checkpoints.while_rendering());
+        FrameResult& frame = resumed.frame;
         progress.finish();
         outcome = frame.outcome;
         samples = frame.end_sample;
@@ -218,7 +216,11 @@ ExitCode run_render(const Options& options)
             image = denoise(image, &guides.albedo, &guides.normal, denoise_options);
             log_verbose("denoised with Open Image Denoise (albedo and normal guides)");
         }
-        write_image(output, image, meta, display_transform(options, settings, output));
+        write_image(output, image, meta, display);
+        checkpoints.write_final(resumed.complete, meta.device);
+        if (!options.aovs.empty() && outcome.cancelled) log_warning("interrupted: no AOV layers written");
+        if (!options.aovs.empty() && !outcome.cancelled && samples > 0)
+            write_aov_layers(options.aovs, devices.front(), prepared, settings, setup, frame.sums, meta, output);
     }
     prepared = PreparedScene{};
 

@@ -228,13 +228,13 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                     if (backup) ++report.backups;
                     report.finished_at = seconds_between(start, Clock::now());
                     shared.complete_samples += range.count;
-                    FilmSums sums = renderer.sums(/*with_squares=*/false);
+                    FilmSums sums = renderer.sums(control.with_squares);
                     std::lock_guard lock(shared.sink_mutex);
                     sink(range, std::move(sums), true);
                 } else if (truncated) {
                     ChunkRange cut = range;
                     cut.count = done;
-                    FilmSums sums = renderer.sums(/*with_squares=*/false);
+                    FilmSums sums = renderer.sums(control.with_squares);
                     std::lock_guard lock(shared.sink_mutex);
                     sink(cut, std::move(sums), false);
                 }

@@ -38,6 +38,8 @@ struct FrameControl {
     // Called (from any device's thread, one call at a time) after each pass with the samples
     // per pixel finished so far over the whole plan (complete chunks and chunks in flight).
     std::function<void(std::uint64_t samples_done)> on_progress;
+    // Whether the chunks' sums carry the squares too (for the variance; twice the read-back).
+    bool with_squares = false;
 };
 
 struct DeviceReport {
@@ -60,7 +62,7 @@ struct FrameOutcome {
 };
 
 // Called from the devices' threads, one call at a time, for each chunk as it completes (its
-// sums and sample counts; no squares: they would double the read-back); and,
+// sums and sample counts; squares only with FrameControl::with_squares); and,
 // at a cancel or a deadline, for each chunk in flight with the samples it got (complete = false,
 // range.count cut to them; never for a chunk with none).
 using ChunkSink = std::function<void(const ChunkRange& range, FilmSums&& sums, bool complete)>;

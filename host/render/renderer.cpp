@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "host/render/chunks.h"
 #include "host/render/environment.h"
 #include "host/render/scene_convert.h"
 #include "host/render/wavefront_path.h"
@@ -172,23 +173,6 @@ Film Renderer::film() const
     return film;
 }
 
-Film Renderer::variance() const
-{
-    const FilmSums s = sums();
-    Film film(m_params.width, m_params.height);
-    const double n = m_sample_count;
-    for (std::size_t i = 0; i < s.sums.size(); ++i) {
-        float v[3] = {0, 0, 0};
-        if (n > 1) {
-            for (int c = 0; c < 3; ++c) {
-                const double mean = s.sums[i][c] / n;
-                v[c] = static_cast<float>(std::max(0.0, (s.squares[i][c] / n - mean * mean) * n / (n - 1)));
-            }
-        }
-        film.set(static_cast<std::uint32_t>(i % m_params.width), static_cast<std::uint32_t>(i / m_params.width),
-                 Rgba{v[0], v[1], v[2], 1.0f});
-    }
-    return film;
-}
+Film Renderer::variance() const { return sample_variance(sums()); }
 
 }  // namespace gc
