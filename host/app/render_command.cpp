@@ -13,6 +13,7 @@
 #include "host/cl/device.h"
 #include "host/image/denoise.h"
 #include "host/image/image_io.h"
+#include "host/render/adaptive.h"
 #include "host/render/frame_hash.h"
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
@@ -162,6 +163,7 @@ ExitCode run_render(const Options& options)
 
     FrameOutcome outcome;
     std::uint32_t samples = 0;
+    std::uint64_t pixel_samples = 0;  // over all pixels: fewer than width x height x samples when adaptive
     const RenderSetup setup = render_setup_from_environment();
     if (options.partial) {
         PartialImage part;
@@ -196,10 +198,18 @@ ExitCode run_render(const Options& options)
         if (part.chunks.empty()) throw DeviceError("the time limit ended the render before any chunk was complete");
         write_partial_image(output, part);
     } else {
-        FrameResult frame = render_frame(devices, prepared, settings, setup, plan, control);
+        FrameRounds rounds;
+        if (settings.noise_threshold > 0.0)
+            rounds = adaptive_rounds(settings.noise_threshold, settings.spp, plan.chunk_samples);
+        FrameResult frame = render_frame(devices, prepared, settings, setup, plan, control, rounds);
         progress.finish();
         outcome = frame.outcome;
         samples = frame.end_sample;
+        pixel_samples = total_samples(frame.sums);
+        if (settings.noise_threshold > 0.0)
+            log_info("adaptive sampling: " + std::to_string(pixel_samples) + " samples in total, mean " +
+                     fixed(double(pixel_samples) / (double(settings.width) * settings.height), 1) + " spp (cap " +
+                     std::to_string(settings.spp) + ")");
         meta.device = device_names(outcome, devices.size() == 1);
         meta.spp = samples;
         meta.seconds = outcome.seconds;
@@ -228,8 +238,8 @@ ExitCode run_render(const Options& options)
                     " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
                     (d.failure.empty() ? "" : ", failed: " + d.failure));
     const double render_seconds = outcome.seconds;
-    const double samples_per_second =
-        static_cast<double>(settings.width) * settings.height * samples / std::max(render_seconds, 1e-9);
+    if (options.partial) pixel_samples = std::uint64_t(settings.width) * settings.height * samples;
+    const double samples_per_second = static_cast<double>(pixel_samples) / std::max(render_seconds, 1e-9);
     log_info("wrote " + output.string() + (options.partial ? " (partial, " : " (") + std::to_string(settings.width) +
              "x" + std::to_string(settings.height) + ", " + std::to_string(samples) + " spp, " +
              fixed(render_seconds, 2) + " s, " + fixed(samples_per_second / 1e6, 2) + " Msamples/s on " +
