@@ -13,7 +13,8 @@ std::vector<std::uint32_t> adaptive_check_points(std::uint32_t spp, std::uint32_
 {
     if (chunk_samples == 0) throw UsageError("the chunk size must be at least 1 sample");
     std::vector<std::uint32_t> points;
-    const std::uint64_t least = std::max<std::uint64_t>(k_adaptive_min_samples, (std::uint64_t(spp) + 15) / 16);
+    const std::uint64_t least = std::max<std::uint64_t>(
+        k_adaptive_min_samples, (std::uint64_t(spp) + k_adaptive_min_fraction - 1) / k_adaptive_min_fraction);
     std::uint64_t point = (least + chunk_samples - 1) / chunk_samples * chunk_samples;
     for (; point < spp; point *= 2) points.push_back(static_cast<std::uint32_t>(point));
     return points;

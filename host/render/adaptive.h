@@ -1,8 +1,8 @@
 // Adaptive sampling (--noise-threshold T): a frame spends its samples where the image is still
 // noisy. Its canonical chunks (chunks.h) are rendered in rounds that end at fixed check points;
-// at each one, every tile whose noisiest pixel has a relative standard error of the mean below
-// T stops, and the next round renders only the other tiles' pixels (Renderer::select_pixels),
-// up to the sample cap (--spp).
+// at each one, every tile whose pixels' relative standard errors of the mean have a root mean
+// square below T stops, and the next round renders only the other tiles' pixels
+// (Renderer::select_pixels), up to the sample cap (--spp).
 //
 //     const FrameResult frame = render_frame(devices, prepared, settings, setup, plan, control,
 //                                            adaptive_rounds(0.02, settings.spp, plan.chunk_samples));
@@ -24,18 +24,26 @@
 
 namespace gc {
 
-// No pixel stops before this many samples: below it, the error estimate is itself too noisy
-// (a pixel that has not yet seen a rare bright path looks converged).
+// No pixel stops before this many samples, nor before a sixteenth of the cap: below that the
+// error estimate is itself too noisy. Light that arrives by rare paths (caustics seen on a
+// diffuse wall) makes the noise heavy-tailed, and a pixel that has not yet seen such a path
+// looks converged; the later the first check, the fewer such pixels stop too early.
 inline constexpr std::uint32_t k_adaptive_min_samples = 16;
-// Pixels stop by square tiles of this side, on the tile's noisiest pixel, so that a noisy pixel
-// among quiet neighbours (a thin caustic, the start of a firefly) is not dropped early.
+inline constexpr std::uint32_t k_adaptive_min_fraction = 16;
+// Pixels stop by square tiles of this side. A tile's error is the root mean square of its
+// pixels' relative errors, its share of the image's relative MSE: one noisy pixel holds the tile
+// in proportion to its noise (a thin caustic, the start of a firefly) instead of being dropped
+// with its quiet neighbours. (The tile's worst pixel holds nearly every tile of a scene with
+// caustics: a pixel whose one bright sample carries its mean has a relative error near 1 at any
+// sample count, and most tiles hold one.)
 inline constexpr std::uint32_t k_adaptive_tile = 8;
 // The relative error divides by the mean luminance, but by no less than this: dark pixels with
 // a little noise stop instead of sampling forever for an error no display shows.
 inline constexpr double k_adaptive_mean_floor = 1e-3;
 
 // The sample counts after which the pixels still sampled are decided: the first multiple of
-// chunk_samples at or above k_adaptive_min_samples, then each doubling of it, while below spp.
+// chunk_samples at or above k_adaptive_min_samples and spp / k_adaptive_min_fraction, then each
+// doubling of it, while below spp.
 // Doubling keeps the rounds few (each is a barrier for the devices) and the work between two
 // decisions proportional to the work before them.
 std::vector<std::uint32_t> adaptive_check_points(std::uint32_t spp, std::uint32_t chunk_samples);
@@ -47,7 +55,7 @@ std::vector<std::uint32_t> adaptive_check_points(std::uint32_t spp, std::uint32_
 double relative_standard_error(const glm::vec4& sum, const glm::vec4& squares, std::uint32_t n);
 
 // The pixels that go on sampling after `samples` samples of `frame` (sums and squares): those of
-// the k_adaptive_tile tiles that got all `samples` and whose noisiest pixel's relative standard
+// the k_adaptive_tile tiles that got all `samples` and whose root mean square relative standard
 // error is at least `threshold`. Ascending indices y * width + x.
 std::vector<std::uint32_t> noisy_pixels(const FilmSums& frame, std::uint32_t samples, double threshold);
 

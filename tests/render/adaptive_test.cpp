@@ -16,12 +16,14 @@ namespace {
 
 using Points = std::vector<std::uint32_t>;
 
-TEST(AdaptiveCheckPoints, StartAtTheFirstChunkPastTheMinimumAndDouble)
+TEST(AdaptiveCheckPoints, StartAtTheFirstChunkPastTheMinimumsAndDouble)
 {
     EXPECT_EQ(adaptive_check_points(256, 64), (Points{64, 128}));
     EXPECT_EQ(adaptive_check_points(256, 8), (Points{16, 32, 64, 128}));
     EXPECT_EQ(adaptive_check_points(200, 5), (Points{20, 40, 80, 160}));
     EXPECT_EQ(adaptive_check_points(129, 16), (Points{16, 32, 64, 128}));
+    EXPECT_EQ(adaptive_check_points(1024, 16), (Points{64, 128, 256, 512}));  // a sixteenth of the cap
+    EXPECT_EQ(adaptive_check_points(1000, 48), (Points{96, 192, 384, 768}));
     EXPECT_EQ(adaptive_check_points(16, 16), Points{});  // nothing to decide: one round
     EXPECT_EQ(adaptive_check_points(64, 64), Points{});
     EXPECT_THROW(adaptive_check_points(64, 0), UsageError);
@@ -119,7 +121,15 @@ TEST(AdaptiveTiles, ANoisyPixelKeepsItsWholeTile)
     for (std::uint32_t p : tile_pixels(20, 0, 8, 8, 10)) both.push_back(p);
     std::sort(both.begin(), both.end());
     EXPECT_EQ(noisy_pixels(f, 32, 0.01), both);
-    // A threshold above the noisy pixels' error stops them too.
+    // A tile's error is the root mean square of its pixels': one pixel of error e gives
+    // e / sqrt(32) in the 4 x 8 tile and e / 4 in the 8 x 2 tile, so a threshold just above
+    // e / sqrt(32) stops the first tile only.
+    glm::vec4 sum, squares;
+    grey_pixel(std::vector<float>{0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1}, sum,
+               squares);
+    const double tile_error = relative_standard_error(sum, squares, 32) / std::sqrt(32.0);
+    EXPECT_EQ(noisy_pixels(f, 32, tile_error * 1.01), tile_pixels(20, 0, 8, 8, 10));
+    EXPECT_EQ(noisy_pixels(f, 32, tile_error * 0.99), both);
     EXPECT_EQ(noisy_pixels(f, 32, 0.5), Points{});
 }
 
