@@ -69,6 +69,7 @@ struct Shared {
     bool rounds_over = false;  // a pick left no pixel: no more rounds
     std::shared_ptr<const std::vector<std::uint32_t>> pixels;  // the round's pick; null: every pixel
     std::uint32_t sunk_count = 0;  // complete chunks through the sink (under sink_mutex)
+    std::exception_ptr round_error;  // a pick that threw: the frame stops and render_chunks rethrows it
     std::vector<std::atomic<std::uint32_t>> progress;     // samples of its current chunk, per device
     std::vector<std::atomic<double>> seconds_per_sample;  // per device, 0 = not known yet
     std::atomic<bool> stop{false};
@@ -96,7 +97,17 @@ void start_next_round_if_due(Shared& shared)
         if (shared.sunk_count != shared.queued_end() || !shared.round_pending() || shared.stop) return;
     }
     const std::uint32_t check_point = shared.plan.first_sample + shared.queued_end() * shared.plan.chunk_samples;
-    auto pixels = std::make_shared<const std::vector<std::uint32_t>>(shared.rounds.pixels_after(check_point));
+    std::shared_ptr<const std::vector<std::uint32_t>> pixels;
+    try {
+        pixels = std::make_shared<const std::vector<std::uint32_t>>(shared.rounds.pixels_after(check_point));
+    } catch (...) {
+        // Not a device's failure: every device would wait for a round that never comes.
+        std::lock_guard lock(shared.mutex);
+        shared.round_error = std::current_exception();
+        shared.stop = true;
+        shared.changed.notify_all();
+        return;
+    }
     std::lock_guard lock(shared.mutex);
     if (pixels->empty()) {
         shared.rounds_over = true;
@@ -334,6 +345,7 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
     for (std::size_t i = 0; i < devices.size(); ++i) threads.emplace_back(worker, i);
     for (auto& t : threads) t.join();
 
+    if (shared.round_error) std::rethrow_exception(shared.round_error);
     outcome.cancelled = shared.cancelled;
     outcome.timed_out = shared.timed_out;
     outcome.seconds = shared.start ? seconds_between(*shared.start, Clock::now()) : seconds_between(called, Clock::now());

@@ -18,6 +18,7 @@
 #include "host/image/image_io.h"
 #include "host/render/adaptive.h"
 #include "host/render/multi_device.h"
+#include "host/util/error.h"
 #include "tests/cl/cl_test_util.h"
 #include "tests/render/cornell_request.h"
 
@@ -137,6 +138,32 @@ TEST_F(AdaptiveRenderTest, EveryPixelHasTheUniformBitsOfItsSampleCount)
         EXPECT_EQ(compared, frame.sums.size());
         EXPECT_EQ(differ, 0u);
     }
+}
+
+// The rounds themselves (multi_device.h): a pick of no pixel ends the frame at its check point;
+// a pick that throws stops every device and reaches the caller instead of leaving them waiting.
+TEST_F(AdaptiveRenderTest, RoundsEndEarlyOrFailCleanly)
+{
+    RenderSettings settings = small_frame();
+    const ChunkPlan plan = ChunkPlan::for_range(0, settings.spp, k_chunk);
+    FrameRounds none_left;
+    none_left.check_points = {16, 32};
+    none_left.pixels_after = [](const FilmSums&, std::uint32_t) { return std::vector<std::uint32_t>{}; };
+    const FrameResult ended = render_frame(same_kind, prepared, settings, {}, plan, {}, none_left);
+    EXPECT_EQ(ended.end_sample, 16u);
+    EXPECT_EQ(ended.sums.sample_counts, std::vector<std::uint32_t>(ended.sums.sums.size(), 16u));
+
+    FrameRounds failing;
+    failing.check_points = {16, 32};
+    failing.pixels_after = [](const FilmSums&, std::uint32_t) -> std::vector<std::uint32_t> {
+        throw InputError("no pick today");
+    };
+    EXPECT_THROW(render_frame(same_kind, prepared, settings, {}, plan, {}, failing), InputError);
+
+    FrameRounds misplaced;
+    misplaced.check_points = {24};  // not a chunk boundary
+    misplaced.pixels_after = none_left.pixels_after;
+    EXPECT_THROW(render_frame({context->device()}, prepared, settings, {}, plan, {}, misplaced), UsageError);
 }
 
 // The metric: relative MSE against the Mitsuba reference (compare_images: mean over RGB of
