@@ -156,7 +156,8 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     m_params.sample_index = m_next_sample;
     m_params.samples_in_pass = samples;
     m_params.pixels_per_item = 1;
-    m_params.flags = m_pixels_listed ? (m_params.flags | GC_RENDER_PIXEL_LIST) : (m_params.flags & ~GC_RENDER_PIXEL_LIST);
+    m_params.flags &= ~GC_RENDER_PIXEL_LIST;
+    if (m_pixels_listed) m_params.flags |= GC_RENDER_PIXEL_LIST;
     m_integrator->begin_pass(m_params);
     for (std::uint32_t offset = 0; offset < pixels; offset += m_batch_pixels) {
         m_params.pixel_offset = offset;

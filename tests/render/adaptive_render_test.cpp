@@ -140,6 +140,29 @@ TEST_F(AdaptiveRenderTest, EveryPixelHasTheUniformBitsOfItsSampleCount)
     }
 }
 
+// Renderer::select_pixels takes strictly ascending pixels of the image, for the path integrator
+// (the others' kernels render every pixel), and counts samples only where it rendered them.
+TEST_F(AdaptiveRenderTest, SelectedPixelsAreCheckedAndCounted)
+{
+    RenderSettings settings = small_frame();
+    Renderer renderer(*context, prepared.scene, prepared.bvh, prepared.camera, settings);
+    const std::uint32_t image = std::uint32_t(settings.width * settings.height);
+    EXPECT_THROW(renderer.select_pixels({3, 3}), UsageError);
+    EXPECT_THROW(renderer.select_pixels({5, 2}), UsageError);
+    EXPECT_THROW(renderer.select_pixels({image}), UsageError);
+    renderer.select_pixels({0, 7, image - 1});
+    renderer.render(0, 4);
+    const FilmSums sums = renderer.sums();
+    for (std::uint32_t i = 0; i < image; ++i) {
+        const bool listed = i == 0 || i == 7 || i == image - 1;
+        EXPECT_EQ(sums.sample_counts[i], listed ? 4u : 0u) << i;
+        EXPECT_EQ(sums.sums[i].w, listed ? 4.0f : 0.0f) << i;  // the kernels' own count
+    }
+    settings.integrator = IntegratorKind::Whitted;
+    Renderer whitted(*context, prepared.scene, prepared.bvh, prepared.camera, settings);
+    EXPECT_THROW(whitted.select_pixels({0}), UsageError);
+}
+
 // The rounds themselves (multi_device.h): a pick of no pixel ends the frame at its check point;
 // a pick that throws stops every device and reaches the caller instead of leaving them waiting.
 TEST_F(AdaptiveRenderTest, RoundsEndEarlyOrFailCleanly)

@@ -125,8 +125,9 @@ TEST(AdaptiveTiles, ANoisyPixelKeepsItsWholeTile)
     // e / sqrt(32) in the 4 x 8 tile and e / 4 in the 8 x 2 tile, so a threshold just above
     // e / sqrt(32) stops the first tile only.
     glm::vec4 sum, squares;
-    grey_pixel(std::vector<float>{0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1}, sum,
-               squares);
+    std::vector<float> alternating;
+    for (int i = 0; i < 32; ++i) alternating.push_back(float(i % 2));
+    grey_pixel(alternating, sum, squares);
     const double tile_error = relative_standard_error(sum, squares, 32) / std::sqrt(32.0);
     EXPECT_EQ(noisy_pixels(f, 32, tile_error * 1.01), tile_pixels(20, 0, 8, 8, 10));
     EXPECT_EQ(noisy_pixels(f, 32, tile_error * 0.99), both);
