@@ -60,7 +60,8 @@ struct FrameOutcome {
 };
 
 // Called from the devices' threads, one call at a time, for each chunk as it completes (its
-// sums and sample counts; no squares: they would double the read-back); and,
+// sums and sample counts; no squares, which would double the read-back, but in a frame in
+// rounds); and,
 // at a cancel or a deadline, for each chunk in flight with the samples it got (complete = false,
 // range.count cut to them; never for a chunk with none).
 using ChunkSink = std::function<void(const ChunkRange& range, FilmSums&& sums, bool complete)>;
