@@ -52,6 +52,13 @@ TEST(NoiseThresholdOption, RefusesWhatItCannotRender)
     const std::string partial = usage_error({"scene.obj", "--noise-threshold", "0.1", "--samples", "0:64"});
     EXPECT_NE(partial.find("--noise-threshold cannot render a partial image (--samples)"), std::string::npos)
         << partial;
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"scene.obj", "--noise-threshold", "0.1", "--resume", "a.partial.exr"},
+          std::vector<std::string>{"scene.obj", "--noise-threshold", "0.1", "--checkpoint-every", "60"}}) {
+        const std::string message = usage_error(args);
+        EXPECT_NE(message.find("--noise-threshold cannot go with --resume or --checkpoint-every"), std::string::npos)
+            << message;
+    }
 }
 
 }  // namespace
