@@ -85,6 +85,13 @@ void Renderer::set_camera(const Camera& camera)
     clear();
 }
 
+void Renderer::set_env_radiance(const glm::vec3& radiance)
+{
+    m_settings.env_radiance = radiance;
+    update_params();
+    clear();
+}
+
 void Renderer::follow_scene_updates()
 {
     if (m_scene->revision == m_scene_revision) return;

@@ -71,6 +71,8 @@ public:
 
     // Points the camera elsewhere; the film restarts.
     void set_camera(const Camera& camera);
+    // Sets the constant environment's radiance (or the environment map's scale); the film restarts.
+    void set_env_radiance(const glm::vec3& radiance);
     // Empties the film; the next render_samples starts at sample `next_sample`.
     void clear(std::uint32_t next_sample = 0);
 

@@ -45,6 +45,7 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
     ls.pdf_w = 0.0f;
     ls.dist = 0.0f;
     ls.kind = GC_LIGHT_NONE;
+    ls.material = GC_INVALID;
     const float group_pmf = gc_light_group_pmf(params);
     if (!(group_pmf > 0.0f)) return ls;
     const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
@@ -74,6 +75,7 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         ls.target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -ls.wi), gc_spawn_scale(p, la.ng.w));
         ls.dist = dist;
         ls.kind = GC_LIGHT_AREA;
+        ls.material = la.material;
         return ls;
     }
     /* The constants drop each group's code from programs built for scenes without it. */

@@ -1,0 +1,124 @@
+/*
+ * gc_path_adjoint.h — one vertex of the path integrator's adjoint (path replay
+ * backpropagation; Vicini, Speierer & Jakob 2021). kernels/adjoint.cl replays each path with
+ * the primal's random numbers through gc_shade_vertex itself, so it makes the same decisions;
+ * at each vertex this adds, to the parameters' slots (gc_grad_slots.h), the derivative of what
+ * the vertex contributes to the sample's radiance, times the loss's derivative `delta` with
+ * respect to that radiance:
+ *     emission seen by the incoming ray   beta * w * Le                   (d / d emission)
+ *     next-event estimation               beta * f * |cos| w / pdf * Li   (d / d albedo, d / d the light's emission)
+ *     the BSDF sample                     weight * L_rem                   (d / d albedo)
+ * where L_rem is the radiance the rest of the path brought (the sample's total minus what the
+ * path had gathered up to and including this vertex), so d(weight * L_rem) = L_rem * df / f.
+ * Sampling densities, MIS weights and Russian roulette are held fixed, as the primal drew
+ * them: the estimate of the derivative stays unbiased, and no vertex is stored, so memory does
+ * not grow with depth.
+ *
+ * What is not differentiated: the alpha of glTF BLEND, normal maps, the emission of a
+ * material that emits nothing (it is no light for next-event estimation), and through
+ * next-event estimation a channel of a light's emission factor that is 0 (the light's texture
+ * factor is recovered as radiance / factor).
+ *
+ * OpenCL C only (atomics).
+ */
+#ifndef GC_PATH_ADJOINT_H
+#define GC_PATH_ADJOINT_H
+
+#include "gc_bsdf_grad.h"
+#include "gc_grad_slots.h"
+#include "gc_path_vertex.h"
+
+/* x / y where y is not 0, else 0: a channel the parameter does not reach. */
+static inline float3 gc_safe_div3(float3 x, float3 y)
+{
+    return (float3)(y.x != 0.0f ? x.x / y.x : 0.0f, y.y != 0.0f ? x.y / y.y : 0.0f, y.z != 0.0f ? x.z / y.z : 0.0f);
+}
+
+/* The texture factor of a material slot at uv: 1 without a texture. */
+static inline float3 gc_texture_factor(GC_SHADE_PARAMS, uint texture, float2 uv)
+{
+    GC_SHADE_UNUSED();
+    if (GC_USE_TEXTURES == 0 || texture == GC_INVALID) return (float3)(1.0f);
+    return GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(texture), uv.x, uv.y));
+}
+
+/* The derivative of the vertex where `ray` (the path's last segment) ended with `hit`. `path`
+ * is the state gc_shade_vertex was given, `res` what it returned, `shadow_visible` whether
+ * its shadow ray (if any) reached the light, `L_rem` the radiance the path gathers after this
+ * vertex, `delta` d loss / d (this sample's radiance). */
+static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcGradTarget g, GcPathState path,
+                                     GcRay ray, GcHit hit, GcVertexResult res, bool shadow_visible, float3 L_rem,
+                                     float3 delta)
+{
+    path.depth += 1u;
+    const uint bounce = path.depth - 1u;
+    const float3 beta = GC_XYZ(path.throughput);
+    const float3 wo_world = -GC_XYZ(ray.dir_tmax);
+    const float3 env_scale = GC_XYZ(params.env_radiance);
+
+    if (hit.prim == GC_INVALID) {
+        /* The environment's radiance is its constant, or the map's texel times the constant:
+         * either way Le / constant, channel by channel. */
+        const float3 Le = gc_escaped_radiance(GC_SHADE_ARGS, params, path, -wo_world);
+        const float3 dLe = gc_has_env_map(params) ? gc_safe_div3(Le, env_scale) : (float3)(1.0f);
+        gc_grad_add3(g, g.env_slot, delta * beta * dLe);
+        return;
+    }
+
+    const float4 r_light = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
+    const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
+    const GcTriangleAttribs tri = GC_ATTRIB(hit.prim);
+    const GcSurface s = gc_surface_at(tri, ray, hit);
+    const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
+    const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
+
+    if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
+        const float4 ra = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
+        if (gc_alpha_transparent(m, base.w, ra.x)) return; /* passed through: nothing here depends on a parameter */
+    }
+
+    /* Emission: Le = emission factor * texture. */
+    const float3 Le = gc_shade_emission(GC_SHADE_ARGS, m, s.uv);
+    const float cos_out = gc_dot(s.ng, wo_world);
+    if ((Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) && gc_emits_toward(m, cos_out)) {
+        const float w = gc_emission_mis_weight(params, path, m, hit.t, cos_out);
+        gc_grad_add3(g, gc_grad_material_slot(s.material, GC_GRAD_FIELD_EMISSION),
+                     delta * beta * w * gc_texture_factor(GC_SHADE_ARGS, m.emission_texture, s.uv));
+    }
+    if (path.depth >= params.max_depth) return;
+
+    const float3 albedo = GC_XYZ(base);
+    const GcFrame frame =
+        gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv));
+    const float3 wo = gc_frame_to_local(frame, wo_world);
+    /* d loss / d albedo (the textured base colour) of this vertex's terms. */
+    float3 d_albedo = (float3)(0.0f);
+
+    if ((res.flags & GC_VERTEX_SHADOW) != 0u && shadow_visible) {
+        const GcLightSample ls = gc_sample_light(GC_SHADE_ARGS, params, s.p, r_light);
+        const float3 wi = gc_frame_to_local(frame, ls.wi);
+        const float w = gc_nee_mis_weight(ls, m, albedo, wo, wi);
+        const float3 k = beta * (fabs(wi.z) * w / ls.pdf_w);
+        d_albedo += delta * k * gc_bsdf_eval_dalbedo(m, wo, wi) * ls.radiance;
+        const float3 f = gc_bsdf_eval(m, albedo, wo, wi);
+        if (ls.kind == GC_LIGHT_AREA) {
+            const GcMaterial lm = GC_MATERIAL(ls.material);
+            gc_grad_add3(g, gc_grad_material_slot(ls.material, GC_GRAD_FIELD_EMISSION),
+                         delta * k * f * gc_safe_div3(ls.radiance, GC_XYZ(lm.emission)));
+        } else if (ls.kind == GC_LIGHT_ENV) {
+            gc_grad_add3(g, g.env_slot, delta * k * f * gc_safe_div3(ls.radiance, env_scale));
+        }
+    }
+
+    if ((res.flags & GC_VERTEX_CONTINUE) != 0u) {
+        const GcBsdfSample bs = gc_bsdf_sample(m, albedo, wo, r_bsdf.x, r_bsdf.y, r_bsdf.z);
+        const float df = gc_bsdf_sample_f_dalbedo(m, wo, bs);
+        d_albedo += delta * L_rem * gc_safe_div3((float3)(df), bs.f);
+    }
+
+    /* albedo = base colour factor * texture: d / d factor = texture * d / d albedo. */
+    gc_grad_add3(g, gc_grad_material_slot(s.material, GC_GRAD_FIELD_BASE_COLOR),
+                 d_albedo * gc_texture_factor(GC_SHADE_ARGS, m.albedo_texture, s.uv));
+}
+
+#endif /* GC_PATH_ADJOINT_H */

@@ -1,0 +1,267 @@
+// The adjoint of the path integrator (kernels/adjoint.cl, host/render/gradients.h): gradients
+// against central finite differences of the primal with the same seed, against an analytic
+// one-bounce furnace, bit for bit run to run; the BSDF's albedo derivative against finite
+// differences on the host; and the parameter table's names and errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gc_bsdf_grad.h"
+#include "host/bvh/bvh.h"
+#include "host/render/gradients.h"
+#include "host/render/scene_params.h"
+#include "tests/cl/cl_test_util.h"
+#include "tests/render/alpha_scenes.h"
+
+namespace gc {
+namespace {
+
+using test::add_quad;
+
+Material lambert(const char* name, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f))
+{
+    Material m;
+    m.name = name;
+    m.albedo = albedo;
+    m.emission = emission;
+    return m;
+}
+
+// An open box: a floor, a red back wall and a small light under the ceiling; the constant
+// environment comes in through the open sides and top.
+Scene open_box()
+{
+    Scene s;
+    s.materials = {lambert("floor", {0.6f, 0.5f, 0.4f}), lambert("red", {0.7f, 0.2f, 0.2f}),
+                   lambert("light", {0.1f, 0.1f, 0.1f}, {6.0f, 5.0f, 4.0f})};
+    add_quad(s, Point3(-1, 0, 1), Point3(1, 0, 1), Point3(1, 0, -1), Point3(-1, 0, -1), 0);
+    add_quad(s, Point3(-1, 0, -1), Point3(1, 0, -1), Point3(1, 2, -1), Point3(-1, 2, -1), 1);
+    add_quad(s, Point3(-0.3f, 1.5f, -0.3f), Point3(0.3f, 1.5f, -0.3f), Point3(0.3f, 1.5f, 0.3f),
+             Point3(-0.3f, 1.5f, 0.3f), 2);
+    return s;
+}
+
+// A plane that fills the view, lit by the constant environment alone.
+Scene white_plane(glm::vec3 albedo)
+{
+    Scene s;
+    s.materials = {lambert("plane", albedo)};
+    add_quad(s, Point3(-100, -100, 0), Point3(100, -100, 0), Point3(100, 100, 0), Point3(-100, 100, 0), 0);
+    return s;
+}
+
+// A scene on the device with a renderer and its parameter table.
+struct Rig {
+    Scene scene;
+    std::shared_ptr<DeviceScene> device;
+    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<SceneParams> params;
+
+    Rig(const cl::Context& context, Scene s, const Camera& camera, const RenderSettings& settings) : scene(std::move(s))
+    {
+        const FlatBvh bvh = build_bvh(scene);
+        device = std::make_shared<DeviceScene>(DeviceScene::upload(context, scene, bvh));
+        renderer = std::make_unique<Renderer>(context, device, camera, settings);
+        params = std::make_unique<SceneParams>(context, scene, *device, *renderer);
+    }
+};
+
+Camera box_camera()
+{
+    Camera c;
+    c.look_from = Point3(0, 0.9f, 3.0f);
+    c.look_at = Point3(0, 0.6f, 0);
+    c.vfov_degrees = 45.0f;
+    return c;
+}
+
+RenderSettings small_settings()
+{
+    RenderSettings s;
+    s.width = 32;
+    s.height = 24;
+    s.max_depth = 4;
+    s.rr_depth = 100;  // no Russian roulette: its decisions would make the estimate jump under a step
+    s.seed = 3;
+    s.env_radiance = glm::vec3(0.2f, 0.3f, 0.4f);
+    return s;
+}
+
+// The loss's weights: d loss / d pixel for the linear loss sum(weights * image).
+std::vector<glm::vec4> loss_weights(std::uint32_t pixels)
+{
+    std::vector<glm::vec4> w(pixels);
+    for (std::uint32_t i = 0; i < pixels; ++i) {
+        const float k = (1.0f + 0.5f * std::sin(0.37f * static_cast<float>(i))) / static_cast<float>(pixels);
+        w[i] = glm::vec4(k, 0.7f * k, 0.4f * k, 0.0f);
+    }
+    return w;
+}
+
+double linear_loss(Renderer& r, const std::vector<glm::vec4>& weights, std::uint32_t spp)
+{
+    r.render(0, spp);
+    const FilmSums sums = r.sums(false);
+    double loss = 0.0;
+    for (std::size_t i = 0; i < weights.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            loss += static_cast<double>(weights[i][c]) * static_cast<double>(sums.sums[i][c]) / spp;
+    return loss;
+}
+
+class GradientTest : public cl::test::DeviceTest {};
+
+// Central differences of the primal (eps = 1e-3, the gradient's seed and sample count) agree
+// with the adjoint for every parameter kind: with the same random numbers both differentiate
+// the same estimator, so the agreement is tight although the image is noisy.
+TEST_F(GradientTest, FiniteDifferencesAgree)
+{
+    const RenderSettings settings = small_settings();
+    Rig rig(*context, open_box(), box_camera(), settings);
+    const std::uint32_t spp = 16;
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    const std::vector<glm::vec4> weights = loss_weights(pixels);
+    const std::vector<std::string> names = {"materials/floor/base_color", "materials/red/base_color",
+                                            "materials/light/emission", "environment/radiance"};
+    PathAdjoint adjoint(*rig.renderer);
+    const Gradients grads = adjoint.backward(*rig.renderer, rig.scene, weights, names, spp, settings.seed);
+    std::printf("fixed-point scale 2^%d, largest contribution %g%s\n", adjoint.stats().scale_exponent,
+                adjoint.stats().max_contribution, adjoint.stats().rescaled ? " (rescaled)" : "");
+    const float eps = 1e-3f;
+    for (const std::string& name : names) {
+        const std::vector<float> value = rig.params->get(name);
+        for (int c = 0; c < 3; ++c) {
+            std::vector<float> v = value;
+            v[c] = value[c] + eps;
+            rig.params->set(name, v);
+            const double up = linear_loss(*rig.renderer, weights, spp);
+            v[c] = value[c] - eps;
+            rig.params->set(name, v);
+            const double down = linear_loss(*rig.renderer, weights, spp);
+            rig.params->set(name, value);
+            const double fd = (up - down) / (2.0 * eps);
+            const double g = grads.at(name)[c];
+            const double rel = std::fabs(g - fd) / std::max(std::fabs(fd), 1e-12);
+            std::printf("%-28s [%d]  adjoint %.7g  finite difference %.7g  relative error %.2e\n", name.c_str(), c, g,
+                        fd, rel);
+            EXPECT_GT(std::fabs(fd), 1e-4) << name << " must reach the image for the check to mean anything";
+            EXPECT_LE(rel, 5e-4) << name << "[" << c << "]";
+        }
+    }
+}
+
+// Two passes give the same bits: the sums are integers, whatever order the work-items add.
+TEST_F(GradientTest, BitIdenticalRunToRun)
+{
+    const RenderSettings settings = small_settings();
+    Rig rig(*context, open_box(), box_camera(), settings);
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    const std::vector<glm::vec4> weights = loss_weights(pixels);
+    std::vector<std::string> names;
+    for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
+    PathAdjoint adjoint(*rig.renderer);
+    const Gradients a = adjoint.backward(*rig.renderer, rig.scene, weights, names, 8, 11);
+    const Gradients b = adjoint.backward(*rig.renderer, rig.scene, weights, names, 8, 11);
+    for (const std::string& name : names) {
+        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), a.at(name)[0], a.at(name)[1], a.at(name)[2]);
+        ASSERT_EQ(a.at(name).size(), b.at(name).size());
+        EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float))) << name;
+    }
+    const Gradients other_seed = adjoint.backward(*rig.renderer, rig.scene, weights, names, 8, 12);
+    EXPECT_NE(other_seed.at(names[0]), a.at(names[0])) << "the seed must choose the gradient's samples";
+}
+
+// A Lambert plane under a constant environment E, seen by one bounce: every pixel is
+// albedo * E (the cosine-sampled ray always escapes), so for loss = mean over pixels of the
+// image, d loss / d albedo = E and d loss / d E = albedo, whatever the samples.
+TEST_F(GradientTest, OneBounceFurnaceIsAnalytic)
+{
+    const glm::vec3 albedo(0.8f, 0.6f, 0.4f);
+    RenderSettings settings = small_settings();
+    settings.env_radiance = glm::vec3(1.0f, 0.5f, 0.25f);
+    Camera camera;
+    camera.look_from = Point3(0, 0, 1);
+    camera.look_at = Point3(0, 0, 0);
+    Rig rig(*context, white_plane(albedo), camera, settings);
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    const std::vector<glm::vec4> uniform(pixels, glm::vec4(glm::vec3(1.0f / static_cast<float>(pixels)), 0.0f));
+    PathAdjoint adjoint(*rig.renderer);
+    const std::vector<std::string> names = {"materials/plane/base_color", "environment/radiance"};
+    const Gradients g = adjoint.backward(*rig.renderer, rig.scene, uniform, names, 4, 5);
+    for (int c = 0; c < 3; ++c) {
+        std::printf("channel %d: d/d albedo %.7f (analytic %.7f), d/d E %.7f (analytic %.7f)\n", c,
+                    g.at(names[0])[c], settings.env_radiance[c], g.at(names[1])[c], albedo[c]);
+        EXPECT_NEAR(g.at(names[0])[c], settings.env_radiance[c], 1e-5f * settings.env_radiance[c]);
+        EXPECT_NEAR(g.at(names[1])[c], albedo[c], 1e-5f * albedo[c]);
+    }
+}
+
+// gc_bsdf_eval_dalbedo against central differences of gc_bsdf_eval, for every type it covers.
+TEST(BsdfAlbedoDerivative, MatchesFiniteDifferences)
+{
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const std::uint32_t types[] = {GC_MAT_LAMBERT, GC_MAT_PHONG, GC_MAT_PBR};
+    double worst = 0.0;
+    for (std::uint32_t type : types) {
+        for (int i = 0; i < 200; ++i) {
+            dev::GcMaterial m{};
+            m.type = type;
+            m.specular = glm::vec4(0.3f, 0.3f, 0.3f, 20.0f);
+            m.pbr = glm::vec4(0.5f + 0.5f * u(rng), 0.3f + 0.25f * u(rng), 0.5f, 0.0f);
+            m.emission = glm::vec4(0.0f, 0.0f, 0.0f, 1.5f);
+            const glm::vec3 wo = glm::normalize(glm::vec3(u(rng), u(rng), 0.2f + std::fabs(u(rng))));
+            const glm::vec3 wi = glm::normalize(glm::vec3(u(rng), u(rng), 0.2f + std::fabs(u(rng))));
+            const glm::vec3 albedo(0.5f, 0.4f, 0.3f);
+            const float h = 1e-2f;
+            const glm::vec3 fd = (dev::gc_bsdf_eval(m, albedo + h, wo, wi) - dev::gc_bsdf_eval(m, albedo - h, wo, wi)) / (2 * h);
+            const float d = dev::gc_bsdf_eval_dalbedo(m, wo, wi);
+            for (int c = 0; c < 3; ++c) {
+                const double err = std::fabs(fd[c] - d) / std::max(std::fabs(static_cast<double>(d)), 1e-3);
+                worst = std::max(worst, err);
+                ASSERT_LE(err, 1e-3) << "type " << type << " sample " << i << " channel " << c << ": " << d << " vs " << fd[c];
+            }
+        }
+    }
+    std::printf("largest relative difference %.2e\n", worst);
+}
+
+TEST(SceneParamsNames, ListAndErrors)
+{
+    Scene s = open_box();
+    Material glass;
+    glass.name = "glass";
+    glass.type = MaterialType::Dielectric;
+    s.materials.push_back(glass);
+    std::vector<std::string> names;
+    for (const ParamInfo& p : list_params(s)) {
+        std::printf("%s (%zu)\n", p.name.c_str(), p.shape[0]);
+        names.push_back(p.name);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"materials/floor/base_color", "materials/red/base_color",
+                                               "materials/light/base_color", "materials/light/emission",
+                                               "environment/radiance"}));
+    const auto message = [&](const char* name) {
+        try {
+            resolve_param(s, name);
+        } catch (const UsageError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    for (const char* name : {"materials/glass/ior", "camera/fov", "materials/glass/base_color", "materials/red/emission"}) {
+        std::printf("%s: %s\n", name, message(name).c_str());
+        EXPECT_NE(message(name).find("not differentiable"), std::string::npos) << name;
+    }
+    EXPECT_NE(message("materials/nothing/base_color").find("no material 'nothing'"), std::string::npos);
+    EXPECT_NE(message("materials/red/metallic").find("not differentiated yet"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gc
