@@ -48,12 +48,18 @@ std::vector<std::uint32_t> slots_of(const ParamRef& ref, std::uint32_t env_slot)
 
 }  // namespace
 
-PathAdjoint::PathAdjoint(const Renderer& renderer) : m_context(renderer.context()) { build(renderer); }
+PathAdjoint::PathAdjoint(const Renderer& renderer, SlotAtomics atomics)
+    : m_context(renderer.context()), m_atomics(atomics)
+{
+    build(renderer);
+}
 
 void PathAdjoint::build(const Renderer& renderer)
 {
     const DeviceScene& scene = renderer.device_scene();
-    m_program = std::make_unique<cl::Program>(m_context, "adjoint.cl", scene_program_options(scene), renderer.setup().build);
+    std::string options = scene_program_options(scene);
+    if (m_atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
+    m_program = std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
     m_features = scene.features;
 }

@@ -39,10 +39,14 @@ struct GradientStats {
     bool rescaled = false;             // the first guess of the scale was too fine: the pass ran again
 };
 
+// How the kernel adds to the 64-bit slots: with 64-bit atomics where the device has them
+// (else two 32-bit ones), or always with two 32-bit ones (to test that way on any device).
+enum class SlotAtomics { Auto, Split32 };
+
 class PathAdjoint {
 public:
     // Builds kernels/adjoint.cl for `renderer`'s scene (again by backward if its features change).
-    explicit PathAdjoint(const Renderer& renderer);
+    explicit PathAdjoint(const Renderer& renderer, SlotAtomics atomics = SlotAtomics::Auto);
 
     // d loss / d parameter for every name in `params` (UsageError for names that are unknown
     // or not differentiable), from `spp` samples per pixel (indices 0 .. spp - 1) with `seed`.
@@ -57,6 +61,7 @@ private:
     void build(const Renderer& renderer);
 
     const cl::Context& m_context;
+    SlotAtomics m_atomics;
     KernelFeatures m_features;
     std::unique_ptr<cl::Program> m_program;
     cl::Kernel m_kernel;

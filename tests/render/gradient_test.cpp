@@ -177,6 +177,26 @@ TEST_F(GradientTest, BitIdenticalRunToRun)
     EXPECT_NE(other_seed.at(names[0]), a.at(names[0])) << "the seed must choose the gradient's samples";
 }
 
+// Two 32-bit atomics with a carry give the same sums as 64-bit ones, bit for bit.
+TEST_F(GradientTest, SplitAtomicsGiveTheSameBits)
+{
+    const RenderSettings settings = small_settings();
+    Rig rig(*context, open_box(), box_camera(), settings);
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    std::vector<glm::vec4> weights = loss_weights(pixels);
+    for (std::uint32_t i = 0; i < pixels; i += 3) weights[i] = -weights[i];  // negative sums borrow through the carry
+    std::vector<std::string> names;
+    for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
+    PathAdjoint native(*rig.renderer);
+    PathAdjoint split(*rig.renderer, SlotAtomics::Split32);
+    const Gradients a = native.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
+    const Gradients b = split.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
+    for (const std::string& name : names) {
+        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), b.at(name)[0], b.at(name)[1], b.at(name)[2]);
+        EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float))) << name;
+    }
+}
+
 // A Lambert plane under a constant environment E, seen by one bounce: every pixel is
 // albedo * E (the cosine-sampled ray always escapes), so for loss = mean over pixels of the
 // image, d loss / d albedo = E and d loss / d E = albedo, whatever the samples.
