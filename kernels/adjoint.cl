@@ -48,6 +48,7 @@ __kernel void path_adjoint(const GcRenderParams params,
                            __global const float4* loss_grad,
                            __global ulong* slots,
                            __global uint* max_bits,
+                           __global const uint* view_slots,
                            const float scale,
                            const uint env_slot)
 {
@@ -59,6 +60,7 @@ __kernel void path_adjoint(const GcRenderParams params,
     GcGradTarget g;
     g.slots = slots;
     g.max_bits = max_bits;
+    g.view_slots = view_slots;
     g.scale = scale;
     g.env_slot = env_slot;
     for (uint k = 0u; k < params.samples_in_pass; ++k) {

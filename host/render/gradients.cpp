@@ -15,9 +15,9 @@ namespace gc {
 namespace {
 
 // The most contributions one slot can receive per sample and vertex: a material's base colour
-// gets one from next-event estimation and one from the BSDF sample, its emission one from a
-// hit and one as the light of next-event estimation; the environment the same two.
-constexpr double k_contributions_per_vertex = 2.0;
+// one, its emission one from a hit and one as the light of next-event estimation, the
+// environment the same two, a texel four (a lookup's four taps may all be that texel).
+constexpr double k_contributions_per_vertex = 4.0;
 
 // Slots hold 64-bit signed sums; the scale keeps every possible sum within 2^62.
 constexpr double k_slot_limit = 4611686018427387904.0;  // 2^62
@@ -30,9 +30,50 @@ int scale_exponent(double bound, double count)
     return std::clamp(e, -120, 120);
 }
 
-std::vector<std::uint32_t> slots_of(const ParamRef& ref, std::uint32_t env_slot)
+// The slots of each parameter asked for; texels get theirs after the environment's, only for
+// the textures asked for.
+struct SlotLayout {
+    std::uint32_t env_slot = 0;
+    std::uint32_t count = 0;
+    std::vector<std::uint32_t> texture_slots;  // per scene texture: its first slot, or GC_INVALID
+    std::vector<std::uint32_t> view_slots;     // per device texture view: its texture's first slot
+};
+
+SlotLayout slot_layout(const Scene& scene, std::span<const ParamRef> refs)
 {
+    SlotLayout layout;
+    layout.env_slot = static_cast<std::uint32_t>(scene.materials.size()) * GC_GRAD_MATERIAL_STRIDE;
+    layout.count = layout.env_slot + GC_GRAD_ENV_SLOTS;
+    layout.texture_slots.assign(scene.textures.size(), GC_INVALID);
+    for (const ParamRef& ref : refs) {
+        if (ref.kind != ParamRef::Kind::Texels || layout.texture_slots[ref.texture] != GC_INVALID) continue;
+        const Texture& t = scene.textures[ref.texture];
+        layout.texture_slots[ref.texture] = layout.count;
+        layout.count += 4u * static_cast<std::uint32_t>(t.width) * static_cast<std::uint32_t>(t.height);
+    }
+    // View i < textures.size() is texture i; later views (uv transforms) share a texture's texels.
+    const std::vector<dev::GcTexture> views = texture_views(scene).views;
+    layout.view_slots.assign(std::max<std::size_t>(views.size(), 1), GC_INVALID);
+    for (std::size_t v = 0; v < views.size(); ++v)
+        for (std::size_t t = 0; t < scene.textures.size(); ++t)
+            if (views[t].offset == views[v].offset) {
+                layout.view_slots[v] = layout.texture_slots[t];
+                break;
+            }
+    return layout;
+}
+
+std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layout, const Scene& scene)
+{
+    const std::uint32_t env_slot = layout.env_slot;
     switch (ref.kind) {
+    case ParamRef::Kind::Texels: {
+        const Texture& t = scene.textures[ref.texture];
+        std::vector<std::uint32_t> slots(4u * static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height));
+        for (std::size_t i = 0; i < slots.size(); ++i)
+            slots[i] = layout.texture_slots[ref.texture] + static_cast<std::uint32_t>(i);
+        return slots;
+    }
     case ParamRef::Kind::BaseColor: {
         const std::uint32_t first = ref.material * GC_GRAD_MATERIAL_STRIDE + GC_GRAD_FIELD_BASE_COLOR;
         return {first, first + 1, first + 2};
@@ -80,9 +121,11 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     if (spp == 0) throw UsageError("a backward pass needs at least one sample per pixel");
     if (scene.features != m_features) build(renderer);
 
-    const std::uint32_t materials = static_cast<std::uint32_t>(scene.materials.count());
-    const std::uint32_t env_slot = materials * GC_GRAD_MATERIAL_STRIDE;
-    const std::uint32_t slot_count = env_slot + GC_GRAD_ENV_SLOTS;
+    if (host_scene.materials.size() != scene.materials.count() || host_scene.triangle_count() != scene.triangle_count)
+        throw UsageError("backward needs the host scene the renderer's device scene was made from");
+    const SlotLayout layout = slot_layout(host_scene, refs);
+    const std::uint32_t slot_count = layout.count;
+    auto view_slots = cl::read_only_buffer(m_context, layout.view_slots, "texel gradient slots");
 
     // Each sample's share of d loss / d (pixel mean).
     std::vector<glm::vec4> per_sample(pixels);
@@ -119,7 +162,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         slots.write(zeros);
         const std::uint32_t zero = 0;
         max_bits.write(std::span<const std::uint32_t>(&zero, 1));
-        m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, std::ldexp(1.0f, e), env_slot);
+        m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, view_slots, std::ldexp(1.0f, e),
+                          layout.env_slot);
         if (max_delta > 0.0) m_kernel.launch(m_context, pixels, local_size, "adjoint paths");
         m_context.finish();
         std::uint32_t bits = 0;
@@ -140,7 +184,7 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     Gradients out;
     for (std::size_t i = 0; i < params.size(); ++i) {
         std::vector<float> g;
-        for (std::uint32_t s : slots_of(refs[i], env_slot))
+        for (std::uint32_t s : slots_of(refs[i], layout, host_scene))
             g.push_back(static_cast<float>(std::ldexp(static_cast<double>(static_cast<std::int64_t>(sums[s])), -m_stats.scale_exponent)));
         out[params[i]] = std::move(g);
     }

@@ -3,15 +3,25 @@
 #include <algorithm>
 #include <charconv>
 
+#include "gc_texture.h"
 #include "host/util/error.h"
 
 namespace gc {
 namespace {
 
 constexpr std::string_view k_materials = "materials/";
-constexpr std::string_view k_env_radiance = "environment/radiance";
 
 bool has_base_color(const Material& m) { return m.type != MaterialType::Dielectric; }
+constexpr std::string_view k_env_radiance = "environment/radiance";
+constexpr std::string_view k_textures = "textures/";
+
+// Whether a material reads texture `i` as its base colour (the adjoint differentiates those).
+bool is_base_color_texture(const Scene& scene, std::size_t i)
+{
+    return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
+        return m.albedo_texture == static_cast<int>(i) && has_base_color(m);
+    });
+}
 
 // The name a material goes by in parameter names: its own where unique, else its index.
 std::string material_key(const Scene& scene, std::size_t i)
@@ -48,6 +58,12 @@ std::vector<ParamInfo> list_params(const Scene& scene)
         if (m.is_emissive()) out.push_back({prefix + "emission", {3}});
     }
     out.push_back({std::string(k_env_radiance), {3}});
+    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        if (is_base_color_texture(scene, i))
+            out.push_back({std::string(k_textures) + std::to_string(i) + "/texels",
+                           {static_cast<std::size_t>(t.height), static_cast<std::size_t>(t.width), 4}});
+    }
     return out;
 }
 
@@ -58,6 +74,23 @@ ParamRef resolve_param(const Scene& scene, std::string_view name)
         name.starts_with("vertices") || name.starts_with("normals") || name.starts_with("shapes"))
         not_differentiable(name, "the adjoint does not sample visibility (silhouettes), so gradients with respect "
                                  "to geometry and the camera would be biased");
+    if (name.starts_with(k_textures)) {
+        const std::string_view rest = name.substr(k_textures.size());
+        std::uint32_t index = 0;
+        const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), index);
+        if (ec != std::errc() || std::string_view(end, rest.data() + rest.size() - end) != "/texels")
+            throw UsageError("unknown parameter '" + std::string(name) + "': expected textures/<index>/texels");
+        if (index >= scene.textures.size())
+            throw UsageError("unknown parameter '" + std::string(name) + "': the scene has " +
+                             std::to_string(scene.textures.size()) + " textures");
+        if (!is_base_color_texture(scene, index))
+            throw UsageError("'" + std::string(name) + "' is not differentiated yet: only base-colour textures' "
+                             "texels are (metallic-roughness, emissive and normal maps are not)");
+        ParamRef ref;
+        ref.kind = ParamRef::Kind::Texels;
+        ref.texture = index;
+        return ref;
+    }
     if (!name.starts_with(k_materials))
         throw UsageError("unknown parameter '" + std::string(name) + "' (list_params names the scene's parameters)");
     const std::string_view rest = name.substr(k_materials.size());
@@ -90,14 +123,27 @@ SceneParams::SceneParams(const cl::Context& context, Scene& scene, DeviceScene& 
 {
 }
 
+std::vector<float> texels_linear(const Texture& t)
+{
+    std::vector<float> out;
+    out.reserve(t.texels.size() * 4);
+    for (std::uint32_t packed : t.texels) {
+        const dev::float4 v = dev::gc_unpack_texel(packed, t.srgb);
+        out.insert(out.end(), {v.x, v.y, v.z, v.w});
+    }
+    return out;
+}
+
 std::vector<float> SceneParams::get(std::string_view name) const
 {
     const ParamRef ref = resolve_param(m_scene, name);
+    if (ref.kind == ParamRef::Kind::Texels) return texels_linear(m_scene.textures[ref.texture]);
     glm::vec3 v(0.0f);
     switch (ref.kind) {
     case ParamRef::Kind::BaseColor: v = m_scene.materials[ref.material].albedo; break;
     case ParamRef::Kind::Emission: v = m_scene.materials[ref.material].emission; break;
     case ParamRef::Kind::EnvRadiance: v = m_renderer.settings().env_radiance; break;
+    case ParamRef::Kind::Texels: break;
     }
     return {v.x, v.y, v.z};
 }
@@ -105,6 +151,9 @@ std::vector<float> SceneParams::get(std::string_view name) const
 void SceneParams::set(std::string_view name, std::span<const float> value)
 {
     const ParamRef ref = resolve_param(m_scene, name);
+    if (ref.kind == ParamRef::Kind::Texels)
+        throw UsageError("'" + std::string(name) + "' cannot be set yet: textures are stored as 8-bit texels, and "
+                         "an optimised texture needs linear float storage");
     if (value.size() != 3)
         throw UsageError("'" + std::string(name) + "' has 3 values, the new value " + std::to_string(value.size()));
     const glm::vec3 v(value[0], value[1], value[2]);
@@ -118,6 +167,7 @@ void SceneParams::set(std::string_view name, std::span<const float> value)
         m_device.update_materials(m_context, m_scene);
         break;
     case ParamRef::Kind::EnvRadiance: m_renderer.set_env_radiance(v); break;
+    case ParamRef::Kind::Texels: break;
     }
 }
 

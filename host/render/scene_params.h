@@ -4,6 +4,8 @@
 //     materials/<m>/base_color   (3)  Lambert/Phong Kd, glTF baseColorFactor, mirror's diffuse part
 //     materials/<m>/emission     (3)  Ke / emissiveFactor * strength, of materials that emit
 //     environment/radiance       (3)  the constant environment, or the environment map's scale
+//     textures/<i>/texels        (h, w, 4)  a base-colour texture's texels, linear (decoded from
+//                                           sRGB); the gradient's alpha is 0 (not differentiated)
 //
 // <m> is the material's name where it is unique in the scene, else its index. Geometry, the
 // camera and indices of refraction are not differentiable (the adjoint does not sample
@@ -31,16 +33,21 @@ struct ParamInfo {
 
 // What a parameter name refers to.
 struct ParamRef {
-    enum class Kind { BaseColor, Emission, EnvRadiance };
+    enum class Kind { BaseColor, Emission, EnvRadiance, Texels };
     Kind kind = Kind::BaseColor;
     std::uint32_t material = 0;  // BaseColor, Emission
+    std::uint32_t texture = 0;   // Texels
 };
 
-// Every differentiable parameter of `scene`, in a fixed order (materials in scene order, then
-// the environment).
+// Every differentiable parameter of `scene`, in a fixed order (materials in scene order, the
+// environment, then textures in scene order).
 std::vector<ParamInfo> list_params(const Scene& scene);
 // The parameter `name` names in `scene`, or UsageError saying why there is none.
 ParamRef resolve_param(const Scene& scene, std::string_view name);
+
+// A texture's texels as linear RGBA floats, row-major from the top row (what
+// textures/<i>/texels reads).
+std::vector<float> texels_linear(const Texture& texture);
 
 // Reads and edits a scene's parameters where they live: the host scene and its device copy
 // (DeviceScene::update_materials, so renderers of it restart their films) and the renderer's

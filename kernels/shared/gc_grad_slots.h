@@ -5,6 +5,8 @@
  * Layout (read by the host, host/render/gradients.cpp):
  *     material i, field f     i * GC_GRAD_MATERIAL_STRIDE + f   (GC_GRAD_FIELD_*)
  *     environment radiance    env_slot + channel                 (env_slot = materials * stride)
+ *     texel j of a texture    view_slots[view] + 4 j + channel   (views of textures asked for;
+ *                                                                 GC_INVALID for the others)
  *
  * Fixed point, not floating-point atomics (docs/decisions/deterministic-gradients.md):
  * integer addition is associative, so the sum is the same bits in whatever order the
@@ -33,6 +35,7 @@
 typedef struct {
     __global ulong* slots;
     __global uint* max_bits; /* the largest |contribution| of the pass, as float bits */
+    __global const uint* view_slots; /* per texture view: its texels' first slot, or GC_INVALID */
     float scale;             /* 2^e: one unit of a slot is 1 / scale */
     uint env_slot;
 } GcGradTarget;

@@ -42,6 +42,28 @@ static inline float3 gc_texture_factor(GC_SHADE_PARAMS, uint texture, float2 uv)
     return GC_XYZ(gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(texture), uv.x, uv.y));
 }
 
+/* Adds the gradient g (per channel, with respect to the texture's value at the lookup) to the
+ * texels the lookup at uv read through `view`, by their bilinear weights, if the view's
+ * texels are asked for. The gradient is with respect to the linear (decoded) texel values. */
+static inline void gc_scatter_texels(GC_SHADE_PARAMS, GcGradTarget g, uint view, float2 uv, float3 grad)
+{
+    GC_SHADE_UNUSED();
+    if (GC_USE_TEXTURES == 0 || view == GC_INVALID) return;
+    const uint first = g.view_slots[view];
+    if (first == GC_INVALID) return;
+    const GcTexelFootprint fp = gc_texture_footprint(GC_TEXTURE(view), uv.x, uv.y);
+    if (fp.nearest != 0u) {
+        gc_grad_add3(g, first + 4u * fp.index.x, grad);
+        return;
+    }
+    const float fx = fp.frac.x;
+    const float fy = fp.frac.y;
+    gc_grad_add3(g, first + 4u * fp.index.x, grad * ((1.0f - fx) * (1.0f - fy)));
+    gc_grad_add3(g, first + 4u * fp.index.y, grad * (fx * (1.0f - fy)));
+    gc_grad_add3(g, first + 4u * fp.index.z, grad * ((1.0f - fx) * fy));
+    gc_grad_add3(g, first + 4u * fp.index.w, grad * (fx * fy));
+}
+
 /* The derivative of the vertex where `ray` (the path's last segment) ended with `hit`. `path`
  * is the state gc_shade_vertex was given, `res` what it returned, `shadow_visible` whether
  * its shadow ray (if any) reached the light, `L_rem` the radiance the path gathers after this
@@ -116,9 +138,11 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
         d_albedo += delta * L_rem * gc_safe_div3((float3)(df), bs.f);
     }
 
-    /* albedo = base colour factor * texture: d / d factor = texture * d / d albedo. */
+    /* albedo = base colour factor * texture: d / d factor = texture * d / d albedo, and
+     * d / d texture = factor * d / d albedo. */
     gc_grad_add3(g, gc_grad_material_slot(s.material, GC_GRAD_FIELD_BASE_COLOR),
                  d_albedo * gc_texture_factor(GC_SHADE_ARGS, m.albedo_texture, s.uv));
+    gc_scatter_texels(GC_SHADE_ARGS, g, m.albedo_texture, s.uv, d_albedo * GC_XYZ(m.albedo));
 }
 
 #endif /* GC_PATH_ADJOINT_H */

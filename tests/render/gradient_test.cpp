@@ -47,6 +47,22 @@ Scene open_box()
     return s;
 }
 
+std::uint32_t rgba8(std::uint32_t r, std::uint32_t g, std::uint32_t b) { return r | g << 8 | b << 16 | 0xffu << 24; }
+
+// The open box with a 2 x 2 sRGB texture on the floor (bilinear, repeating).
+Scene textured_box(std::uint32_t texel0_red = 200)
+{
+    Scene s = open_box();
+    Texture t;
+    t.name = "floor texels";
+    t.width = t.height = 2;
+    t.texels = {rgba8(texel0_red, 120, 60), rgba8(90, 220, 140), rgba8(40, 160, 230), rgba8(250, 250, 250)};
+    s.textures = {t};
+    s.materials[0].albedo = glm::vec3(0.9f, 0.8f, 0.7f);
+    s.materials[0].albedo_texture = 0;
+    return s;
+}
+
 // A plane that fills the view, lit by the constant environment alone.
 Scene white_plane(glm::vec3 albedo)
 {
@@ -177,6 +193,55 @@ TEST_F(GradientTest, BitIdenticalRunToRun)
     EXPECT_NE(other_seed.at(names[0]), a.at(names[0])) << "the seed must choose the gradient's samples";
 }
 
+// The image is linear in the texels' linear values at each lookup, so for a base colour
+// factor k and texels t: sum over texels of t * d/dt = k * d/dk, channel by channel. A texel
+// gradient scattered to the wrong texel or with the wrong weight breaks it (the texels differ).
+TEST_F(GradientTest, TexelGradientsAddUpToTheFactors)
+{
+    const RenderSettings settings = small_settings();
+    Rig rig(*context, textured_box(), box_camera(), settings);
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    const std::vector<std::string> names = {"materials/floor/base_color", "textures/0/texels"};
+    PathAdjoint adjoint(*rig.renderer);
+    const Gradients g = adjoint.backward(*rig.renderer, rig.scene, loss_weights(pixels), names, 8, 4);
+    const std::vector<float> texels = rig.params->get("textures/0/texels");
+    ASSERT_EQ(g.at(names[1]).size(), texels.size());
+    const glm::vec3 factor = rig.scene.materials[0].albedo;
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0.0;
+        for (std::size_t j = c; j < texels.size(); j += 4) sum += static_cast<double>(texels[j]) * g.at(names[1])[j];
+        const double expected = factor[c] * static_cast<double>(g.at(names[0])[c]);
+        std::printf("channel %d: sum t dL/dt %.7g, k dL/dk %.7g, relative error %.2e\n", c, sum, expected,
+                    std::fabs(sum - expected) / expected);
+        EXPECT_NEAR(sum, expected, 1e-5 * expected);
+    }
+}
+
+// A texel's gradient against a central difference of its 8-bit code (the image is linear in
+// the texel's value, so the step's size does not matter), same seed.
+TEST_F(GradientTest, TexelGradientMatchesAStepOfItsCode)
+{
+    const RenderSettings settings = small_settings();
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    const std::vector<glm::vec4> weights = loss_weights(pixels);
+    const std::uint32_t spp = 16;
+    const std::uint32_t code = 200;
+    Rig rig(*context, textured_box(code), box_camera(), settings);
+    PathAdjoint adjoint(*rig.renderer);
+    const float g = adjoint.backward(*rig.renderer, rig.scene, weights, {{"textures/0/texels"}}, spp, settings.seed)
+                        .at("textures/0/texels")[0];
+    Rig up(*context, textured_box(code + 1), box_camera(), settings);
+    Rig down(*context, textured_box(code - 1), box_camera(), settings);
+    const double step = static_cast<double>(up.params->get("textures/0/texels")[0]) -
+                        static_cast<double>(down.params->get("textures/0/texels")[0]);
+    const double fd = (linear_loss(*up.renderer, weights, spp) - linear_loss(*down.renderer, weights, spp)) / step;
+    const double rel = std::fabs(g - fd) / std::fabs(fd);
+    std::printf("texel 0 red: adjoint %.7g, difference over codes %u..%u %.7g, relative error %.2e\n", g, code - 1,
+                code + 1, fd, rel);
+    EXPECT_GT(std::fabs(fd), 1e-4);
+    EXPECT_LE(rel, 5e-4);
+}
+
 // Two 32-bit atomics with a carry give the same sums as 64-bit ones, bit for bit.
 TEST_F(GradientTest, SplitAtomicsGiveTheSameBits)
 {
@@ -281,6 +346,7 @@ TEST(SceneParamsNames, ListAndErrors)
     }
     EXPECT_NE(message("materials/nothing/base_color").find("no material 'nothing'"), std::string::npos);
     EXPECT_NE(message("materials/red/metallic").find("not differentiated yet"), std::string::npos);
+    EXPECT_NE(message("textures/3/texels").find("has 0 textures"), std::string::npos);
 }
 
 }  // namespace
