@@ -126,6 +126,10 @@ SceneParams::SceneParams(const cl::Context& context, Scene& scene, DeviceScene& 
 std::vector<float> texels_linear(const Texture& t)
 {
     std::vector<float> out;
+    if (!t.linear.empty()) {
+        for (const glm::vec4& v : t.linear) out.insert(out.end(), {v.x, v.y, v.z, v.w});
+        return out;
+    }
     out.reserve(t.texels.size() * 4);
     for (std::uint32_t packed : t.texels) {
         const dev::float4 v = dev::gc_unpack_texel(packed, t.srgb);
@@ -151,9 +155,21 @@ std::vector<float> SceneParams::get(std::string_view name) const
 void SceneParams::set(std::string_view name, std::span<const float> value)
 {
     const ParamRef ref = resolve_param(m_scene, name);
-    if (ref.kind == ParamRef::Kind::Texels)
-        throw UsageError("'" + std::string(name) + "' cannot be set yet: textures are stored as 8-bit texels, and "
-                         "an optimised texture needs linear float storage");
+    if (ref.kind == ParamRef::Kind::Texels) {
+        Texture& t = m_scene.textures[ref.texture];
+        const std::size_t count = static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
+        if (value.size() != 4 * count)
+            throw UsageError("'" + std::string(name) + "' has " + std::to_string(4 * count) + " values (" +
+                             std::to_string(t.height) + " x " + std::to_string(t.width) + " x 4), the new value " +
+                             std::to_string(value.size()));
+        // From now on the texture is linear floats: an optimiser's small steps must not be
+        // rounded to 8 bits.
+        t.linear.resize(count);
+        for (std::size_t i = 0; i < count; ++i)
+            t.linear[i] = glm::vec4(value[4 * i], value[4 * i + 1], value[4 * i + 2], value[4 * i + 3]);
+        m_device.update_textures(m_context, m_scene);
+        return;
+    }
     if (value.size() != 3)
         throw UsageError("'" + std::string(name) + "' has 3 values, the new value " + std::to_string(value.size()));
     const glm::vec3 v(value[0], value[1], value[2]);
@@ -167,7 +183,7 @@ void SceneParams::set(std::string_view name, std::span<const float> value)
         m_device.update_materials(m_context, m_scene);
         break;
     case ParamRef::Kind::EnvRadiance: m_renderer.set_env_radiance(v); break;
-    case ParamRef::Kind::Texels: break;
+    case ParamRef::Kind::Texels: break;  // set above
     }
 }
 

@@ -5,7 +5,8 @@
 //     materials/<m>/emission     (3)  Ke / emissiveFactor * strength, of materials that emit
 //     environment/radiance       (3)  the constant environment, or the environment map's scale
 //     textures/<i>/texels        (h, w, 4)  a base-colour texture's texels, linear (decoded from
-//                                           sRGB); the gradient's alpha is 0 (not differentiated)
+//                                           sRGB); the gradient's alpha is 0 (not differentiated).
+//                                           Once set, the texture is stored as linear floats.
 //
 // <m> is the material's name where it is unique in the scene, else its index. Geometry, the
 // camera and indices of refraction are not differentiable (the adjoint does not sample

@@ -103,17 +103,27 @@ GC_FUNC GcTexelFootprint gc_texture_footprint(GcTexture tex, float u, float v)
     return fp;
 }
 
+/* Texel `index` of the view's texture, linear RGBA. */
+GC_FUNC float4 gc_texel_value(GC_TEXELS_PARAM, GcTexture tex, uint index)
+{
+    if ((tex.flags & GC_TEXF_FLOAT) != 0u) {
+        const uint w = tex.offset + 4u * index;
+        return make_float4(gc_as_float(GC_TEXEL(w)), gc_as_float(GC_TEXEL(w + 1u)), gc_as_float(GC_TEXEL(w + 2u)),
+                           gc_as_float(GC_TEXEL(w + 3u)));
+    }
+    return gc_unpack_texel(GC_TEXEL(tex.offset + index), (tex.flags & GC_TEXF_SRGB) != 0u);
+}
+
 GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float v)
 {
-    const bool srgb = (tex.flags & GC_TEXF_SRGB) != 0u;
     const GcTexelFootprint fp = gc_texture_footprint(tex, u, v);
-    if (fp.nearest != 0u) return gc_unpack_texel(GC_TEXEL(tex.offset + fp.index.x), srgb);
+    if (fp.nearest != 0u) return gc_texel_value(GC_TEXELS_ARG, tex, fp.index.x);
     const float fx = fp.frac.x;
     const float fy = fp.frac.y;
-    const float4 t00 = gc_unpack_texel(GC_TEXEL(tex.offset + fp.index.x), srgb);
-    const float4 t10 = gc_unpack_texel(GC_TEXEL(tex.offset + fp.index.y), srgb);
-    const float4 t01 = gc_unpack_texel(GC_TEXEL(tex.offset + fp.index.z), srgb);
-    const float4 t11 = gc_unpack_texel(GC_TEXEL(tex.offset + fp.index.w), srgb);
+    const float4 t00 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.x);
+    const float4 t10 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.y);
+    const float4 t01 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.z);
+    const float4 t11 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.w);
     const float4 top = t00 * (1.0f - fx) + t10 * fx;
     const float4 bottom = t01 * (1.0f - fx) + t11 * fx;
     return top * (1.0f - fy) + bottom * fy;
