@@ -63,6 +63,13 @@ SlotLayout slot_layout(const Scene& scene, std::span<const ParamRef> refs)
     return layout;
 }
 
+std::vector<std::uint32_t> material_slots(std::uint32_t material, std::uint32_t field, std::uint32_t count)
+{
+    std::vector<std::uint32_t> slots;
+    for (std::uint32_t i = 0; i < count; ++i) slots.push_back(material * GC_GRAD_MATERIAL_STRIDE + field + i);
+    return slots;
+}
+
 std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layout, const Scene& scene)
 {
     const std::uint32_t env_slot = layout.env_slot;
@@ -74,14 +81,12 @@ std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layou
             slots[i] = layout.texture_slots[ref.texture] + static_cast<std::uint32_t>(i);
         return slots;
     }
-    case ParamRef::Kind::BaseColor: {
-        const std::uint32_t first = ref.material * GC_GRAD_MATERIAL_STRIDE + GC_GRAD_FIELD_BASE_COLOR;
-        return {first, first + 1, first + 2};
-    }
-    case ParamRef::Kind::Emission: {
-        const std::uint32_t first = ref.material * GC_GRAD_MATERIAL_STRIDE + GC_GRAD_FIELD_EMISSION;
-        return {first, first + 1, first + 2};
-    }
+    case ParamRef::Kind::BaseColor: return material_slots(ref.material, GC_GRAD_FIELD_BASE_COLOR, 3);
+    case ParamRef::Kind::Emission: return material_slots(ref.material, GC_GRAD_FIELD_EMISSION, 3);
+    case ParamRef::Kind::Specular: return material_slots(ref.material, GC_GRAD_FIELD_SPECULAR, 3);
+    case ParamRef::Kind::PhongExponent: return material_slots(ref.material, GC_GRAD_FIELD_PHONG_EXPONENT, 1);
+    case ParamRef::Kind::Metallic: return material_slots(ref.material, GC_GRAD_FIELD_METALLIC, 1);
+    case ParamRef::Kind::Roughness: return material_slots(ref.material, GC_GRAD_FIELD_ROUGHNESS, 1);
     case ParamRef::Kind::EnvRadiance: return {env_slot, env_slot + 1, env_slot + 2};
     }
     return {};

@@ -56,6 +56,12 @@ std::vector<ParamInfo> list_params(const Scene& scene)
         const std::string prefix = std::string(k_materials) + material_key(scene, i) + "/";
         if (has_base_color(m)) out.push_back({prefix + "base_color", {3}});
         if (m.is_emissive()) out.push_back({prefix + "emission", {3}});
+        if (m.type == MaterialType::Phong || m.type == MaterialType::Mirror) out.push_back({prefix + "specular", {3}});
+        if (m.type == MaterialType::Phong) out.push_back({prefix + "phong_exponent", {1}});
+        if (m.type == MaterialType::Pbr) {
+            out.push_back({prefix + "metallic", {1}});
+            out.push_back({prefix + "roughness", {1}});
+        }
     }
     out.push_back({std::string(k_env_radiance), {3}});
     for (std::size_t i = 0; i < scene.textures.size(); ++i) {
@@ -112,10 +118,21 @@ ParamRef resolve_param(const Scene& scene, std::string_view name)
     }
     if (field == "ior")
         not_differentiable(name, "refraction directions are sampled, not differentiated (as Mitsuba's prb)");
-    if (field == "specular" || field == "phong_exponent" || field == "metallic" || field == "roughness")
-        throw UsageError("'" + std::string(name) + "' is not differentiated yet: the adjoint covers base_color, "
-                         "emission and environment/radiance");
-    throw UsageError("unknown parameter '" + std::string(name) + "': a material's fields are base_color and emission");
+    const auto only_for = [&](bool applies, ParamRef::Kind kind, const char* types) -> ParamRef {
+        if (!applies)
+            throw UsageError("unknown parameter '" + std::string(name) + "': only " + types + " materials have " +
+                             std::string(field));
+        return {kind, material};
+    };
+    if (field == "specular")
+        return only_for(m.type == MaterialType::Phong || m.type == MaterialType::Mirror, ParamRef::Kind::Specular,
+                        "Phong and mirror");
+    if (field == "phong_exponent")
+        return only_for(m.type == MaterialType::Phong, ParamRef::Kind::PhongExponent, "Phong");
+    if (field == "metallic") return only_for(m.type == MaterialType::Pbr, ParamRef::Kind::Metallic, "glTF");
+    if (field == "roughness") return only_for(m.type == MaterialType::Pbr, ParamRef::Kind::Roughness, "glTF");
+    throw UsageError("unknown parameter '" + std::string(name) +
+                     "': a material's fields are base_color, emission, specular, phong_exponent, metallic and roughness");
 }
 
 SceneParams::SceneParams(const cl::Context& context, Scene& scene, DeviceScene& device, Renderer& renderer)
@@ -142,14 +159,20 @@ std::vector<float> SceneParams::get(std::string_view name) const
 {
     const ParamRef ref = resolve_param(m_scene, name);
     if (ref.kind == ParamRef::Kind::Texels) return texels_linear(m_scene.textures[ref.texture]);
-    glm::vec3 v(0.0f);
-    switch (ref.kind) {
-    case ParamRef::Kind::BaseColor: v = m_scene.materials[ref.material].albedo; break;
-    case ParamRef::Kind::Emission: v = m_scene.materials[ref.material].emission; break;
-    case ParamRef::Kind::EnvRadiance: v = m_renderer.settings().env_radiance; break;
-    case ParamRef::Kind::Texels: break;
+    if (ref.kind == ParamRef::Kind::EnvRadiance) {
+        const glm::vec3 v = m_renderer.settings().env_radiance;
+        return {v.x, v.y, v.z};
     }
-    return {v.x, v.y, v.z};
+    const Material& m = m_scene.materials[ref.material];
+    switch (ref.kind) {
+    case ParamRef::Kind::BaseColor: return {m.albedo.x, m.albedo.y, m.albedo.z};
+    case ParamRef::Kind::Emission: return {m.emission.x, m.emission.y, m.emission.z};
+    case ParamRef::Kind::Specular: return {m.specular.x, m.specular.y, m.specular.z};
+    case ParamRef::Kind::PhongExponent: return {m.phong_exponent};
+    case ParamRef::Kind::Metallic: return {m.metallic};
+    case ParamRef::Kind::Roughness: return {m.roughness};
+    default: return {};
+    }
 }
 
 void SceneParams::set(std::string_view name, std::span<const float> value)
@@ -170,21 +193,25 @@ void SceneParams::set(std::string_view name, std::span<const float> value)
         m_device.update_textures(m_context, m_scene);
         return;
     }
-    if (value.size() != 3)
-        throw UsageError("'" + std::string(name) + "' has 3 values, the new value " + std::to_string(value.size()));
-    const glm::vec3 v(value[0], value[1], value[2]);
-    switch (ref.kind) {
-    case ParamRef::Kind::BaseColor:
-        m_scene.materials[ref.material].albedo = v;
-        m_device.update_materials(m_context, m_scene);
-        break;
-    case ParamRef::Kind::Emission:
-        m_scene.materials[ref.material].emission = v;
-        m_device.update_materials(m_context, m_scene);
-        break;
-    case ParamRef::Kind::EnvRadiance: m_renderer.set_env_radiance(v); break;
-    case ParamRef::Kind::Texels: break;  // set above
+    const std::size_t size = get(name).size();
+    if (value.size() != size)
+        throw UsageError("'" + std::string(name) + "' has " + std::to_string(size) + " values, the new value " +
+                         std::to_string(value.size()));
+    if (ref.kind == ParamRef::Kind::EnvRadiance) {
+        m_renderer.set_env_radiance(glm::vec3(value[0], value[1], value[2]));
+        return;
     }
+    Material& m = m_scene.materials[ref.material];
+    switch (ref.kind) {
+    case ParamRef::Kind::BaseColor: m.albedo = glm::vec3(value[0], value[1], value[2]); break;
+    case ParamRef::Kind::Emission: m.emission = glm::vec3(value[0], value[1], value[2]); break;
+    case ParamRef::Kind::Specular: m.specular = glm::vec3(value[0], value[1], value[2]); break;
+    case ParamRef::Kind::PhongExponent: m.phong_exponent = value[0]; break;
+    case ParamRef::Kind::Metallic: m.metallic = value[0]; break;
+    case ParamRef::Kind::Roughness: m.roughness = value[0]; break;
+    default: break;
+    }
+    m_device.update_materials(m_context, m_scene);
 }
 
 }  // namespace gc

@@ -3,6 +3,10 @@
 //
 //     materials/<m>/base_color   (3)  Lambert/Phong Kd, glTF baseColorFactor, mirror's diffuse part
 //     materials/<m>/emission     (3)  Ke / emissiveFactor * strength, of materials that emit
+//     materials/<m>/specular     (3)  Phong's Ks, the mirror's reflectance
+//     materials/<m>/phong_exponent (1)  Phong's Ns
+//     materials/<m>/metallic     (1)  glTF metallicFactor
+//     materials/<m>/roughness    (1)  glTF roughnessFactor
 //     environment/radiance       (3)  the constant environment, or the environment map's scale
 //     textures/<i>/texels        (h, w, 4)  a base-colour texture's texels, linear (decoded from
 //                                           sRGB); the gradient's alpha is 0 (not differentiated).
@@ -34,9 +38,9 @@ struct ParamInfo {
 
 // What a parameter name refers to.
 struct ParamRef {
-    enum class Kind { BaseColor, Emission, EnvRadiance, Texels };
+    enum class Kind { BaseColor, Emission, Specular, PhongExponent, Metallic, Roughness, EnvRadiance, Texels };
     Kind kind = Kind::BaseColor;
-    std::uint32_t material = 0;  // BaseColor, Emission
+    std::uint32_t material = 0;  // the material fields
     std::uint32_t texture = 0;   // Texels
 };
 

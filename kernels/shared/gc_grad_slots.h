@@ -19,9 +19,13 @@
 #ifndef GC_GRAD_SLOTS_H
 #define GC_GRAD_SLOTS_H
 
-#define GC_GRAD_MATERIAL_STRIDE 8u
-#define GC_GRAD_FIELD_BASE_COLOR 0u /* rgb */
-#define GC_GRAD_FIELD_EMISSION 3u   /* rgb */
+#define GC_GRAD_MATERIAL_STRIDE 16u
+#define GC_GRAD_FIELD_BASE_COLOR 0u     /* rgb */
+#define GC_GRAD_FIELD_EMISSION 3u       /* rgb */
+#define GC_GRAD_FIELD_SPECULAR 6u       /* rgb: Phong's Ks, the mirror's reflectance */
+#define GC_GRAD_FIELD_PHONG_EXPONENT 9u
+#define GC_GRAD_FIELD_METALLIC 10u
+#define GC_GRAD_FIELD_ROUGHNESS 11u
 #define GC_GRAD_ENV_SLOTS 3u
 
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)

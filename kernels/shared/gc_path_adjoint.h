@@ -6,10 +6,12 @@
  * the vertex contributes to the sample's radiance, times the loss's derivative `delta` with
  * respect to that radiance:
  *     emission seen by the incoming ray   beta * w * Le                   (d / d emission)
- *     next-event estimation               beta * f * |cos| w / pdf * Li   (d / d albedo, d / d the light's emission)
- *     the BSDF sample                     weight * L_rem                   (d / d albedo)
+ *     next-event estimation               beta * f * |cos| w / pdf * Li   (d / d f's parameters, d / d the light's emission)
+ *     the BSDF sample                     weight * L_rem                   (d / d f's parameters)
  * where L_rem is the radiance the rest of the path brought (the sample's total minus what the
  * path had gathered up to and including this vertex), so d(weight * L_rem) = L_rem * df / f.
+ * f's parameters: the albedo (base colour, its texels), Phong's Ks and exponent, the mirror's
+ * reflectance, glTF metallic and roughness (gc_bsdf_grad.h).
  * Sampling densities, MIS weights and Russian roulette are held fixed, as the primal drew
  * them: the estimate of the derivative stays unbiased, and no vertex is stored, so memory does
  * not grow with depth.
@@ -113,16 +115,19 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
     const GcFrame frame =
         gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv));
     const float3 wo = gc_frame_to_local(frame, wo_world);
-    /* d loss / d albedo (the textured base colour) of this vertex's terms. */
-    float3 d_albedo = (float3)(0.0f);
-
+    /* A vertex's value f enters its two terms as nee * f(wi_light) and bsdf * f(wi_sampled),
+     * so d loss / d theta = nee . df(wi_light) + bsdf . df(wi_sampled) for each parameter
+     * theta of f: nee = delta * beta * |cos| w / pdf * Li, bsdf = delta * L_rem / f (f's
+     * own factor in the sample weight cancels against L_rem's). */
+    float3 nee = (float3)(0.0f);
+    float3 nee_wi = (float3)(0.0f, 0.0f, 1.0f);
     if ((res.flags & GC_VERTEX_SHADOW) != 0u && shadow_visible) {
         const GcLightSample ls = gc_sample_light(GC_SHADE_ARGS, params, s.p, r_light);
-        const float3 wi = gc_frame_to_local(frame, ls.wi);
-        const float w = gc_nee_mis_weight(ls, m, albedo, wo, wi);
-        const float3 k = beta * (fabs(wi.z) * w / ls.pdf_w);
-        d_albedo += delta * k * gc_bsdf_eval_dalbedo(m, wo, wi) * ls.radiance;
-        const float3 f = gc_bsdf_eval(m, albedo, wo, wi);
+        nee_wi = gc_frame_to_local(frame, ls.wi);
+        const float w = gc_nee_mis_weight(ls, m, albedo, wo, nee_wi);
+        const float3 k = beta * (fabs(nee_wi.z) * w / ls.pdf_w);
+        nee = delta * k * ls.radiance;
+        const float3 f = gc_bsdf_eval(m, albedo, wo, nee_wi);
         if (ls.kind == GC_LIGHT_AREA) {
             const GcMaterial lm = GC_MATERIAL(ls.material);
             gc_grad_add3(g, gc_grad_material_slot(ls.material, GC_GRAD_FIELD_EMISSION),
@@ -131,11 +136,47 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
             gc_grad_add3(g, g.env_slot, delta * k * f * gc_safe_div3(ls.radiance, env_scale));
         }
     }
-
+    float3 bsdf = (float3)(0.0f);
+    GcBsdfSample bs;
+    bs.flags = 0u;
     if ((res.flags & GC_VERTEX_CONTINUE) != 0u) {
-        const GcBsdfSample bs = gc_bsdf_sample(m, albedo, wo, r_bsdf.x, r_bsdf.y, r_bsdf.z);
-        const float df = gc_bsdf_sample_f_dalbedo(m, wo, bs);
-        d_albedo += delta * L_rem * gc_safe_div3((float3)(df), bs.f);
+        bs = gc_bsdf_sample(m, albedo, wo, r_bsdf.x, r_bsdf.y, r_bsdf.z);
+        bsdf = gc_safe_div3(delta * L_rem, bs.f);
+    }
+    const bool has_nee = nee.x != 0.0f || nee.y != 0.0f || nee.z != 0.0f;
+    const bool has_bsdf = bsdf.x != 0.0f || bsdf.y != 0.0f || bsdf.z != 0.0f;
+    if (!has_nee && !has_bsdf) return;
+
+    /* d loss / d albedo (the textured base colour). */
+    float3 d_albedo = (float3)(0.0f);
+    if (has_nee) d_albedo += nee * gc_bsdf_eval_dalbedo(m, wo, nee_wi);
+    if (has_bsdf) d_albedo += bsdf * gc_bsdf_sample_f_dalbedo(m, wo, bs);
+
+    /* Phong's Ks and the mirror's reflectance. */
+    if (gc_material_is(m, GC_MAT_PHONG) || gc_material_is(m, GC_MAT_MIRROR)) {
+        float3 d_spec = (float3)(0.0f);
+        if (has_nee) d_spec += nee * gc_bsdf_eval_dspecular(m, albedo, wo, nee_wi);
+        if (has_bsdf) d_spec += bsdf * gc_bsdf_sample_f_dspecular(m, albedo, wo, bs);
+        gc_grad_add3(g, gc_grad_material_slot(s.material, GC_GRAD_FIELD_SPECULAR), d_spec);
+    }
+    /* The Phong exponent, and glTF metallic and roughness: the latter are the factors times
+     * the metallicRoughness texture (B, G), so d / d factor = texture * d / d effective. */
+    const float3 mr = gc_texture_factor(GC_SHADE_ARGS, m.metallic_roughness_texture, s.uv);
+    for (uint param = 0u; param < 3u; ++param) {
+        if (!gc_bsdf_has_param(m, param)) continue;
+        float3 d = (float3)(0.0f);
+        if (has_nee) d += nee * gc_bsdf_eval_dparam(m, albedo, wo, nee_wi, param);
+        if (has_bsdf) d += bsdf * gc_bsdf_sample_f_dparam(m, albedo, wo, bs, param);
+        float sum = d.x + d.y + d.z;
+        uint field = GC_GRAD_FIELD_PHONG_EXPONENT;
+        if (param == GC_BSDF_PARAM_METALLIC) {
+            field = GC_GRAD_FIELD_METALLIC;
+            sum *= mr.z;
+        } else if (param == GC_BSDF_PARAM_ROUGHNESS) {
+            field = GC_GRAD_FIELD_ROUGHNESS;
+            sum *= mr.y;
+        }
+        gc_grad_add(g, gc_grad_material_slot(s.material, field), sum);
     }
 
     /* albedo = base colour factor * texture: d / d factor = texture * d / d albedo, and
