@@ -124,6 +124,9 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         throw UsageError("the loss gradient has " + std::to_string(loss_grad.size()) + " pixels, the image " +
                          std::to_string(pixels) + " (" + std::to_string(width) + " x " + std::to_string(height) + ")");
     if (spp == 0) throw UsageError("a backward pass needs at least one sample per pixel");
+    if (settings.integrator != IntegratorKind::Path)
+        throw UsageError(std::string("gradients are of the path integrator's image; this renderer runs '") +
+                         integrator_name(settings.integrator) + "'");
     if (scene.features != m_features) build(renderer);
 
     if (host_scene.materials.size() != scene.materials.count() || host_scene.triangle_count() != scene.triangle_count)
