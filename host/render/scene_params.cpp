@@ -15,11 +15,15 @@ bool has_base_color(const Material& m) { return m.type != MaterialType::Dielectr
 constexpr std::string_view k_env_radiance = "environment/radiance";
 constexpr std::string_view k_textures = "textures/";
 
-// Whether a material reads texture `i` as its base colour (the adjoint differentiates those).
-bool is_base_color_texture(const Scene& scene, std::size_t i)
+// Whether a material reads texture `i` in a slot the adjoint differentiates: base colour,
+// metallic-roughness (glTF) or emission (of a material that emits).
+bool is_differentiated_texture(const Scene& scene, std::size_t i)
 {
+    const int t = static_cast<int>(i);
     return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
-        return m.albedo_texture == static_cast<int>(i) && has_base_color(m);
+        return (m.albedo_texture == t && has_base_color(m)) ||
+               (m.metallic_roughness_texture == t && m.type == MaterialType::Pbr) ||
+               (m.emission_texture == t && m.is_emissive());
     });
 }
 
@@ -66,7 +70,7 @@ std::vector<ParamInfo> list_params(const Scene& scene)
     out.push_back({std::string(k_env_radiance), {3}});
     for (std::size_t i = 0; i < scene.textures.size(); ++i) {
         const Texture& t = scene.textures[i];
-        if (is_base_color_texture(scene, i))
+        if (is_differentiated_texture(scene, i))
             out.push_back({std::string(k_textures) + std::to_string(i) + "/texels",
                            {static_cast<std::size_t>(t.height), static_cast<std::size_t>(t.width), 4}});
     }
@@ -89,7 +93,7 @@ ParamRef resolve_param(const Scene& scene, std::string_view name)
         if (index >= scene.textures.size())
             throw UsageError("unknown parameter '" + std::string(name) + "': the scene has " +
                              std::to_string(scene.textures.size()) + " textures");
-        if (!is_base_color_texture(scene, index))
+        if (!is_differentiated_texture(scene, index))
             throw UsageError("'" + std::string(name) + "' is not differentiated yet: only base-colour textures' "
                              "texels are (metallic-roughness, emissive and normal maps are not)");
         ParamRef ref;

@@ -8,8 +8,9 @@
 //     materials/<m>/metallic     (1)  glTF metallicFactor
 //     materials/<m>/roughness    (1)  glTF roughnessFactor
 //     environment/radiance       (3)  the constant environment, or the environment map's scale
-//     textures/<i>/texels        (h, w, 4)  a base-colour texture's texels, linear (decoded from
-//                                           sRGB); the gradient's alpha is 0 (not differentiated).
+//     textures/<i>/texels        (h, w, 4)  the texels of a base-colour, metallic-roughness or
+//                                           emissive texture, linear (decoded from sRGB); the
+//                                           gradient's alpha is 0 (not differentiated).
 //                                           Once set, the texture is stored as linear floats.
 //
 // <m> is the material's name where it is unique in the scene, else its index. Geometry, the

@@ -46,6 +46,7 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
     ls.dist = 0.0f;
     ls.kind = GC_LIGHT_NONE;
     ls.material = GC_INVALID;
+    ls.uv = make_float2(0.0f, 0.0f);
     const float group_pmf = gc_light_group_pmf(params);
     if (!(group_pmf > 0.0f)) return ls;
     const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
@@ -68,7 +69,8 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         ls.wi = to_light / dist;
         const float cos_light = gc_dot(GC_XYZ(la.ng), -ls.wi);
         if (!gc_emits_toward(lm, cos_light)) return ls;
-        ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, gc_triangle_uv(la, b));
+        ls.uv = gc_triangle_uv(la, b);
+        ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, ls.uv);
         ls.pdf_w = group_pmf * gc_light_pdf_w(GC_XYZ(lm.emission), params.emitter_power, dist, cos_light);
         /* The shadow ray from p must stop short of the light's own triangle: its t there carries
          * error in proportion to both ends' magnitudes. */

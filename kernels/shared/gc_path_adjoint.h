@@ -16,10 +16,8 @@
  * them: the estimate of the derivative stays unbiased, and no vertex is stored, so memory does
  * not grow with depth.
  *
- * What is not differentiated: the alpha of glTF BLEND, normal maps, the emission of a
- * material that emits nothing (it is no light for next-event estimation), and through
- * next-event estimation a channel of a light's emission factor that is 0 (the light's texture
- * factor is recovered as radiance / factor).
+ * What is not differentiated: the alpha of glTF BLEND, transmission, normal maps, and the
+ * emission of a material that emits nothing (it is no light for next-event estimation).
  *
  * OpenCL C only (atomics).
  */
@@ -105,9 +103,10 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
     const float3 Le = gc_shade_emission(GC_SHADE_ARGS, m, s.uv);
     const float cos_out = gc_dot(s.ng, wo_world);
     if ((Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) && gc_emits_toward(m, cos_out)) {
-        const float w = gc_emission_mis_weight(params, path, m, hit.t, cos_out);
+        const float3 d_le = delta * beta * gc_emission_mis_weight(params, path, m, hit.t, cos_out);
         gc_grad_add3(g, gc_grad_material_slot(s.material, GC_GRAD_FIELD_EMISSION),
-                     delta * beta * w * gc_texture_factor(GC_SHADE_ARGS, m.emission_texture, s.uv));
+                     d_le * gc_texture_factor(GC_SHADE_ARGS, m.emission_texture, s.uv));
+        gc_scatter_texels(GC_SHADE_ARGS, g, m.emission_texture, s.uv, d_le * GC_XYZ(m.emission));
     }
     if (path.depth >= params.max_depth) return;
 
@@ -130,8 +129,10 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
         const float3 f = gc_bsdf_eval(m, albedo, wo, nee_wi);
         if (ls.kind == GC_LIGHT_AREA) {
             const GcMaterial lm = GC_MATERIAL(ls.material);
+            const float3 d_le = delta * k * f;
             gc_grad_add3(g, gc_grad_material_slot(ls.material, GC_GRAD_FIELD_EMISSION),
-                         delta * k * f * gc_safe_div3(ls.radiance, GC_XYZ(lm.emission)));
+                         d_le * gc_texture_factor(GC_SHADE_ARGS, lm.emission_texture, ls.uv));
+            gc_scatter_texels(GC_SHADE_ARGS, g, lm.emission_texture, ls.uv, d_le * GC_XYZ(lm.emission));
         } else if (ls.kind == GC_LIGHT_ENV) {
             gc_grad_add3(g, g.env_slot, delta * k * f * gc_safe_div3(ls.radiance, env_scale));
         }
@@ -162,6 +163,8 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
     /* The Phong exponent, and glTF metallic and roughness: the latter are the factors times
      * the metallicRoughness texture (B, G), so d / d factor = texture * d / d effective. */
     const float3 mr = gc_texture_factor(GC_SHADE_ARGS, m.metallic_roughness_texture, s.uv);
+    const GcMaterial factors = GC_MATERIAL(s.material);
+    float3 d_mr = (float3)(0.0f); /* d loss / d the metallicRoughness texture's (R, G, B) at uv */
     for (uint param = 0u; param < 3u; ++param) {
         if (!gc_bsdf_has_param(m, param)) continue;
         float3 d = (float3)(0.0f);
@@ -171,13 +174,16 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
         uint field = GC_GRAD_FIELD_PHONG_EXPONENT;
         if (param == GC_BSDF_PARAM_METALLIC) {
             field = GC_GRAD_FIELD_METALLIC;
+            d_mr.z = sum * factors.pbr.x;
             sum *= mr.z;
         } else if (param == GC_BSDF_PARAM_ROUGHNESS) {
             field = GC_GRAD_FIELD_ROUGHNESS;
+            d_mr.y = sum * factors.pbr.y;
             sum *= mr.y;
         }
         gc_grad_add(g, gc_grad_material_slot(s.material, field), sum);
     }
+    if (gc_material_is(m, GC_MAT_PBR)) gc_scatter_texels(GC_SHADE_ARGS, g, m.metallic_roughness_texture, s.uv, d_mr);
 
     /* albedo = base colour factor * texture: d / d factor = texture * d / d albedo, and
      * d / d texture = factor * d / d albedo. */
