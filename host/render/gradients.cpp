@@ -46,10 +46,12 @@ SlotLayout slot_layout(const Scene& scene, std::span<const ParamRef> refs)
     layout.count = layout.env_slot + GC_GRAD_ENV_SLOTS;
     layout.texture_slots.assign(scene.textures.size(), GC_INVALID);
     for (const ParamRef& ref : refs) {
-        if (ref.kind != ParamRef::Kind::Texels || layout.texture_slots[ref.texture] != GC_INVALID) continue;
+        if (ref.kind != ParamRef::Kind::Texels || layout.texture_slots[ref.texture] != GC_INVALID)
+            continue;
         const Texture& t = scene.textures[ref.texture];
         layout.texture_slots[ref.texture] = layout.count;
-        layout.count += 4u * static_cast<std::uint32_t>(t.width) * static_cast<std::uint32_t>(t.height);
+        layout.count +=
+            4u * static_cast<std::uint32_t>(t.width) * static_cast<std::uint32_t>(t.height);
     }
     // View i < textures.size() is texture i; later views (uv transforms) share a texture's texels.
     const std::vector<dev::GcTexture> views = texture_views(scene).views;
@@ -63,31 +65,42 @@ SlotLayout slot_layout(const Scene& scene, std::span<const ParamRef> refs)
     return layout;
 }
 
-std::vector<std::uint32_t> material_slots(std::uint32_t material, std::uint32_t field, std::uint32_t count)
+std::vector<std::uint32_t> material_slots(std::uint32_t material, std::uint32_t field,
+                                          std::uint32_t count)
 {
     std::vector<std::uint32_t> slots;
-    for (std::uint32_t i = 0; i < count; ++i) slots.push_back(material * GC_GRAD_MATERIAL_STRIDE + field + i);
+    for (std::uint32_t i = 0; i < count; ++i)
+        slots.push_back(material * GC_GRAD_MATERIAL_STRIDE + field + i);
     return slots;
 }
 
-std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layout, const Scene& scene)
+std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layout,
+                                    const Scene& scene)
 {
     const std::uint32_t env_slot = layout.env_slot;
     switch (ref.kind) {
-    case ParamRef::Kind::Texels: {
-        const Texture& t = scene.textures[ref.texture];
-        std::vector<std::uint32_t> slots(4u * static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height));
-        for (std::size_t i = 0; i < slots.size(); ++i)
-            slots[i] = layout.texture_slots[ref.texture] + static_cast<std::uint32_t>(i);
-        return slots;
-    }
-    case ParamRef::Kind::BaseColor: return material_slots(ref.material, GC_GRAD_FIELD_BASE_COLOR, 3);
-    case ParamRef::Kind::Emission: return material_slots(ref.material, GC_GRAD_FIELD_EMISSION, 3);
-    case ParamRef::Kind::Specular: return material_slots(ref.material, GC_GRAD_FIELD_SPECULAR, 3);
-    case ParamRef::Kind::PhongExponent: return material_slots(ref.material, GC_GRAD_FIELD_PHONG_EXPONENT, 1);
-    case ParamRef::Kind::Metallic: return material_slots(ref.material, GC_GRAD_FIELD_METALLIC, 1);
-    case ParamRef::Kind::Roughness: return material_slots(ref.material, GC_GRAD_FIELD_ROUGHNESS, 1);
-    case ParamRef::Kind::EnvRadiance: return {env_slot, env_slot + 1, env_slot + 2};
+        case ParamRef::Kind::Texels: {
+            const Texture& t = scene.textures[ref.texture];
+            std::vector<std::uint32_t> slots(4u * static_cast<std::size_t>(t.width) *
+                                             static_cast<std::size_t>(t.height));
+            for (std::size_t i = 0; i < slots.size(); ++i)
+                slots[i] = layout.texture_slots[ref.texture] + static_cast<std::uint32_t>(i);
+            return slots;
+        }
+        case ParamRef::Kind::BaseColor:
+            return material_slots(ref.material, GC_GRAD_FIELD_BASE_COLOR, 3);
+        case ParamRef::Kind::Emission:
+            return material_slots(ref.material, GC_GRAD_FIELD_EMISSION, 3);
+        case ParamRef::Kind::Specular:
+            return material_slots(ref.material, GC_GRAD_FIELD_SPECULAR, 3);
+        case ParamRef::Kind::PhongExponent:
+            return material_slots(ref.material, GC_GRAD_FIELD_PHONG_EXPONENT, 1);
+        case ParamRef::Kind::Metallic:
+            return material_slots(ref.material, GC_GRAD_FIELD_METALLIC, 1);
+        case ParamRef::Kind::Roughness:
+            return material_slots(ref.material, GC_GRAD_FIELD_ROUGHNESS, 1);
+        case ParamRef::Kind::EnvRadiance:
+            return {env_slot, env_slot + 1, env_slot + 2};
     }
     return {};
 }
@@ -105,13 +118,16 @@ void PathAdjoint::build(const Renderer& renderer)
     const DeviceScene& scene = renderer.device_scene();
     std::string options = scene_program_options(scene);
     if (m_atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
-    m_program = std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
+    m_program =
+        std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
     m_features = scene.features;
 }
 
-Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scene, std::span<const glm::vec4> loss_grad,
-                                std::span<const std::string> params, std::uint32_t spp, std::uint32_t seed)
+Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scene,
+                                std::span<const glm::vec4> loss_grad,
+                                std::span<const std::string> params, std::uint32_t spp,
+                                std::uint32_t seed)
 {
     const DeviceScene& scene = renderer.device_scene();
     std::vector<ParamRef> refs;
@@ -121,15 +137,18 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     const std::uint32_t height = static_cast<std::uint32_t>(settings.height);
     const std::uint32_t pixels = width * height;
     if (loss_grad.size() != pixels)
-        throw UsageError("the loss gradient has " + std::to_string(loss_grad.size()) + " pixels, the image " +
-                         std::to_string(pixels) + " (" + std::to_string(width) + " x " + std::to_string(height) + ")");
+        throw UsageError("the loss gradient has " + std::to_string(loss_grad.size()) +
+                         " pixels, the image " + std::to_string(pixels) + " (" +
+                         std::to_string(width) + " x " + std::to_string(height) + ")");
     if (spp == 0) throw UsageError("a backward pass needs at least one sample per pixel");
     if (settings.integrator != IntegratorKind::Path)
-        throw UsageError(std::string("gradients are of the path integrator's image; this renderer runs '") +
-                         integrator_name(settings.integrator) + "'");
+        throw UsageError(
+            std::string("gradients are of the path integrator's image; this renderer runs '") +
+            integrator_name(settings.integrator) + "'");
     if (scene.features != m_features) build(renderer);
 
-    if (host_scene.materials.size() != scene.materials.count() || host_scene.triangle_count() != scene.triangle_count)
+    if (host_scene.materials.size() != scene.materials.count() ||
+        host_scene.triangle_count() != scene.triangle_count)
         throw UsageError("backward needs the host scene the renderer's device scene was made from");
     const SlotLayout layout = slot_layout(host_scene, refs);
     const std::uint32_t slot_count = layout.count;
@@ -140,11 +159,14 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     double max_delta = 0.0;
     for (std::uint32_t i = 0; i < pixels; ++i) {
         per_sample[i] = glm::vec4(glm::vec3(loss_grad[i]) / static_cast<float>(spp), 0.0f);
-        for (int c = 0; c < 3; ++c) max_delta = std::max(max_delta, std::fabs(static_cast<double>(per_sample[i][c])));
+        for (int c = 0; c < 3; ++c)
+            max_delta = std::max(max_delta, std::fabs(static_cast<double>(per_sample[i][c])));
     }
     auto deltas = cl::read_only_buffer(m_context, per_sample, "loss gradient");
-    auto slots = cl::Buffer<std::uint64_t>::create(m_context, slot_count, CL_MEM_READ_WRITE, "gradient slots");
-    auto max_bits = cl::Buffer<std::uint32_t>::create(m_context, 1, CL_MEM_READ_WRITE, "largest contribution");
+    auto slots = cl::Buffer<std::uint64_t>::create(m_context, slot_count, CL_MEM_READ_WRITE,
+                                                   "gradient slots");
+    auto max_bits =
+        cl::Buffer<std::uint32_t>::create(m_context, 1, CL_MEM_READ_WRITE, "largest contribution");
 
     dev::GcRenderParams p = make_render_params(scene.summary, renderer.camera(), settings);
     set_environment_map(p, settings, scene.env_width, scene.env_height);
@@ -158,7 +180,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     // The first guess bounds a vertex's contribution by 256 times the largest delta (radiance
     // times BSDF factors rarely exceed it); the pass records the true largest, and if the
     // guess was short the pass runs again with that: either way a function of the inputs only.
-    const double count = static_cast<double>(pixels) * spp * std::max(settings.max_depth, 1u) * k_contributions_per_vertex;
+    const double count = static_cast<double>(pixels) * spp * std::max(settings.max_depth, 1u) *
+                         k_contributions_per_vertex;
     double bound = max_delta * 256.0;
     // One work-item per group on CPUs, as the megakernel (megakernel_path.cpp says why).
     const std::size_t local_size = m_context.device().is_gpu ? 0 : 1;
@@ -170,8 +193,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         slots.write(zeros);
         const std::uint32_t zero = 0;
         max_bits.write(std::span<const std::uint32_t>(&zero, 1));
-        m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, view_slots, std::ldexp(1.0f, e),
-                          layout.env_slot);
+        m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, view_slots,
+                          std::ldexp(1.0f, e), layout.env_slot);
         if (max_delta > 0.0) m_kernel.launch(m_context, pixels, local_size, "adjoint paths");
         m_context.finish();
         std::uint32_t bits = 0;
@@ -193,7 +216,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     for (std::size_t i = 0; i < params.size(); ++i) {
         std::vector<float> g;
         for (std::uint32_t s : slots_of(refs[i], layout, host_scene))
-            g.push_back(static_cast<float>(std::ldexp(static_cast<double>(static_cast<std::int64_t>(sums[s])), -m_stats.scale_exponent)));
+            g.push_back(static_cast<float>(std::ldexp(
+                static_cast<double>(static_cast<std::int64_t>(sums[s])), -m_stats.scale_exponent)));
         out[params[i]] = std::move(g);
     }
     return out;

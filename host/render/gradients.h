@@ -15,13 +15,12 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <map>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "host/cl/kernel.h"
 #include "host/cl/program.h"
@@ -34,9 +33,9 @@ using Gradients = std::map<std::string, std::vector<float>>;
 
 // How the last backward pass accumulated (for reports and tests).
 struct GradientStats {
-    int scale_exponent = 0;            // one slot unit is 2^-scale_exponent
-    float max_contribution = 0.0f;     // the largest |contribution| one vertex added
-    bool rescaled = false;             // the first guess of the scale was too fine: the pass ran again
+    int scale_exponent = 0;         // one slot unit is 2^-scale_exponent
+    float max_contribution = 0.0f;  // the largest |contribution| one vertex added
+    bool rescaled = false;          // the first guess of the scale was too fine: the pass ran again
 };
 
 // How the kernel adds to the 64-bit slots: with 64-bit atomics where the device has them
@@ -51,9 +50,11 @@ public:
     // d loss / d parameter for every name in `params` (UsageError for names that are unknown
     // or not differentiable), from `spp` samples per pixel (indices 0 .. spp - 1) with `seed`.
     // `loss_grad` has one entry per pixel (alpha ignored): d loss / d the pixel's mean radiance.
-    // `scene` is the host scene the renderer's device scene was made from (it names the parameters).
-    Gradients backward(const Renderer& renderer, const Scene& scene, std::span<const glm::vec4> loss_grad,
-                       std::span<const std::string> params, std::uint32_t spp, std::uint32_t seed);
+    // `scene` is the host scene the renderer's device scene was made from (it names the
+    // parameters).
+    Gradients backward(const Renderer& renderer, const Scene& scene,
+                       std::span<const glm::vec4> loss_grad, std::span<const std::string> params,
+                       std::uint32_t spp, std::uint32_t seed);
 
     const GradientStats& stats() const { return m_stats; }
 

@@ -39,7 +39,16 @@ struct ParamInfo {
 
 // What a parameter name refers to.
 struct ParamRef {
-    enum class Kind { BaseColor, Emission, Specular, PhongExponent, Metallic, Roughness, EnvRadiance, Texels };
+    enum class Kind {
+        BaseColor,
+        Emission,
+        Specular,
+        PhongExponent,
+        Metallic,
+        Roughness,
+        EnvRadiance,
+        Texels
+    };
     Kind kind = Kind::BaseColor;
     std::uint32_t material = 0;  // the material fields
     std::uint32_t texture = 0;   // Texels

@@ -51,7 +51,10 @@ Scene open_box()
     return s;
 }
 
-std::uint32_t rgba8(std::uint32_t r, std::uint32_t g, std::uint32_t b) { return r | g << 8 | b << 16 | 0xffu << 24; }
+std::uint32_t rgba8(std::uint32_t r, std::uint32_t g, std::uint32_t b)
+{
+    return r | g << 8 | b << 16 | 0xffu << 24;
+}
 
 // The open box with a 2 x 2 sRGB texture on the floor (bilinear, repeating).
 Scene textured_box()
@@ -60,7 +63,8 @@ Scene textured_box()
     Texture t;
     t.name = "floor texels";
     t.width = t.height = 2;
-    t.texels = {rgba8(200, 120, 60), rgba8(90, 220, 140), rgba8(40, 160, 230), rgba8(250, 250, 250)};
+    t.texels = {rgba8(200, 120, 60), rgba8(90, 220, 140), rgba8(40, 160, 230),
+                rgba8(250, 250, 250)};
     s.textures = {t};
     s.materials[0].albedo = glm::vec3(0.9f, 0.8f, 0.7f);
     s.materials[0].albedo_texture = 0;
@@ -72,7 +76,8 @@ Scene white_plane(glm::vec3 albedo)
 {
     Scene s;
     s.materials = {lambert("plane", albedo)};
-    add_quad(s, Point3(-100, -100, 0), Point3(100, -100, 0), Point3(100, 100, 0), Point3(-100, 100, 0), 0);
+    add_quad(s, Point3(-100, -100, 0), Point3(100, -100, 0), Point3(100, 100, 0),
+             Point3(-100, 100, 0), 0);
     return s;
 }
 
@@ -83,10 +88,12 @@ struct Rig {
     std::unique_ptr<Renderer> renderer;
     std::unique_ptr<SceneParams> params;
 
-    Rig(const cl::Context& context, Scene s, const Camera& camera, const RenderSettings& settings) : scene(std::move(s))
+    Rig(const cl::Context& context, Scene s, const Camera& camera, const RenderSettings& settings)
+        : scene(std::move(s))
     {
         const FlatBvh bvh = build_bvh(scene);
-        device = std::make_shared<DeviceScene>(DeviceScene::upload(context, scene, bvh, load_environment_map(settings)));
+        device = std::make_shared<DeviceScene>(
+            DeviceScene::upload(context, scene, bvh, load_environment_map(settings)));
         renderer = std::make_unique<Renderer>(context, device, camera, settings);
         params = std::make_unique<SceneParams>(context, scene, *device, *renderer);
     }
@@ -107,7 +114,8 @@ RenderSettings small_settings()
     s.width = 32;
     s.height = 24;
     s.max_depth = 4;
-    s.rr_depth = 100;  // no Russian roulette: its decisions would make the estimate jump under a step
+    s.rr_depth =
+        100;  // no Russian roulette: its decisions would make the estimate jump under a step
     s.seed = 3;
     s.env_radiance = glm::vec3(0.2f, 0.3f, 0.4f);
     return s;
@@ -118,7 +126,8 @@ std::vector<glm::vec4> loss_weights(std::uint32_t pixels)
 {
     std::vector<glm::vec4> w(pixels);
     for (std::uint32_t i = 0; i < pixels; ++i) {
-        const float k = (1.0f + 0.5f * std::sin(0.37f * static_cast<float>(i))) / static_cast<float>(pixels);
+        const float k =
+            (1.0f + 0.5f * std::sin(0.37f * static_cast<float>(i))) / static_cast<float>(pixels);
         w[i] = glm::vec4(k, 0.7f * k, 0.4f * k, 0.0f);
     }
     return w;
@@ -147,12 +156,15 @@ TEST_F(GradientTest, FiniteDifferencesAgree)
     const std::uint32_t spp = 16;
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
     const std::vector<glm::vec4> weights = loss_weights(pixels);
-    const std::vector<std::string> names = {"materials/floor/base_color", "materials/red/base_color",
-                                            "materials/light/emission", "environment/radiance"};
+    const std::vector<std::string> names = {"materials/floor/base_color",
+                                            "materials/red/base_color", "materials/light/emission",
+                                            "environment/radiance"};
     PathAdjoint adjoint(*rig.renderer);
-    const Gradients grads = adjoint.backward(*rig.renderer, rig.scene, weights, names, spp, settings.seed);
-    std::printf("fixed-point scale 2^%d, largest contribution %g%s\n", adjoint.stats().scale_exponent,
-                adjoint.stats().max_contribution, adjoint.stats().rescaled ? " (rescaled)" : "");
+    const Gradients grads =
+        adjoint.backward(*rig.renderer, rig.scene, weights, names, spp, settings.seed);
+    std::printf("fixed-point scale 2^%d, largest contribution %g%s\n",
+                adjoint.stats().scale_exponent, adjoint.stats().max_contribution,
+                adjoint.stats().rescaled ? " (rescaled)" : "");
     const float eps = 1e-3f;
     for (const std::string& name : names) {
         const std::vector<float> value = rig.params->get(name);
@@ -168,9 +180,10 @@ TEST_F(GradientTest, FiniteDifferencesAgree)
             const double fd = (up - down) / (2.0 * eps);
             const double g = grads.at(name)[c];
             const double rel = std::fabs(g - fd) / std::max(std::fabs(fd), 1e-12);
-            std::printf("%-28s [%d]  adjoint %.7g  finite difference %.7g  relative error %.2e\n", name.c_str(), c, g,
-                        fd, rel);
-            EXPECT_GT(std::fabs(fd), 1e-4) << name << " must reach the image for the check to mean anything";
+            std::printf("%-28s [%d]  adjoint %.7g  finite difference %.7g  relative error %.2e\n",
+                        name.c_str(), c, g, fd, rel);
+            EXPECT_GT(std::fabs(fd), 1e-4)
+                << name << " must reach the image for the check to mean anything";
             EXPECT_LE(rel, 5e-4) << name << "[" << c << "]";
         }
     }
@@ -189,12 +202,16 @@ TEST_F(GradientTest, BitIdenticalRunToRun)
     const Gradients a = adjoint.backward(*rig.renderer, rig.scene, weights, names, 8, 11);
     const Gradients b = adjoint.backward(*rig.renderer, rig.scene, weights, names, 8, 11);
     for (const std::string& name : names) {
-        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), a.at(name)[0], a.at(name)[1], a.at(name)[2]);
+        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), a.at(name)[0], a.at(name)[1],
+                    a.at(name)[2]);
         ASSERT_EQ(a.at(name).size(), b.at(name).size());
-        EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float))) << name;
+        EXPECT_EQ(
+            0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float)))
+            << name;
     }
     const Gradients other_seed = adjoint.backward(*rig.renderer, rig.scene, weights, names, 8, 12);
-    EXPECT_NE(other_seed.at(names[0]), a.at(names[0])) << "the seed must choose the gradient's samples";
+    EXPECT_NE(other_seed.at(names[0]), a.at(names[0]))
+        << "the seed must choose the gradient's samples";
 }
 
 // The image is linear in the texels' linear values at each lookup, so for a base colour
@@ -207,16 +224,18 @@ TEST_F(GradientTest, TexelGradientsAddUpToTheFactors)
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
     const std::vector<std::string> names = {"materials/floor/base_color", "textures/0/texels"};
     PathAdjoint adjoint(*rig.renderer);
-    const Gradients g = adjoint.backward(*rig.renderer, rig.scene, loss_weights(pixels), names, 8, 4);
+    const Gradients g =
+        adjoint.backward(*rig.renderer, rig.scene, loss_weights(pixels), names, 8, 4);
     const std::vector<float> texels = rig.params->get("textures/0/texels");
     ASSERT_EQ(g.at(names[1]).size(), texels.size());
     const glm::vec3 factor = rig.scene.materials[0].albedo;
     for (int c = 0; c < 3; ++c) {
         double sum = 0.0;
-        for (std::size_t j = c; j < texels.size(); j += 4) sum += static_cast<double>(texels[j]) * g.at(names[1])[j];
+        for (std::size_t j = c; j < texels.size(); j += 4)
+            sum += static_cast<double>(texels[j]) * g.at(names[1])[j];
         const double expected = factor[c] * static_cast<double>(g.at(names[0])[c]);
-        std::printf("channel %d: sum t dL/dt %.7g, k dL/dk %.7g, relative error %.2e\n", c, sum, expected,
-                    std::fabs(sum - expected) / expected);
+        std::printf("channel %d: sum t dL/dt %.7g, k dL/dk %.7g, relative error %.2e\n", c, sum,
+                    expected, std::fabs(sum - expected) / expected);
         EXPECT_NEAR(sum, expected, 1e-5 * expected);
     }
 }
@@ -239,13 +258,16 @@ TEST_F(GradientTest, TexelGradientMatchesFiniteDifferences)
     ASSERT_FALSE(rig.scene.textures[0].linear.empty());
     rig.renderer->render(0, spp);
     const FilmSums linear = rig.renderer->sums(false);
-    EXPECT_EQ(0, std::memcmp(eight_bit.sums.data(), linear.sums.data(), linear.sums.size() * sizeof(glm::vec4)))
+    EXPECT_EQ(0, std::memcmp(eight_bit.sums.data(), linear.sums.data(),
+                             linear.sums.size() * sizeof(glm::vec4)))
         << "the float texels are the 8-bit ones decoded, so the image must not change";
 
     PathAdjoint adjoint(*rig.renderer);
-    const std::vector<float> g = adjoint.backward(*rig.renderer, rig.scene, weights, {{name}}, spp, settings.seed).at(name);
+    const std::vector<float> g =
+        adjoint.backward(*rig.renderer, rig.scene, weights, {{name}}, spp, settings.seed).at(name);
     const float eps = 1e-3f;
-    for (std::size_t k : {std::size_t(0), std::size_t(5), std::size_t(10), std::size_t(14)}) {  // texel k / 4, channel k % 4
+    for (std::size_t k : {std::size_t(0), std::size_t(5), std::size_t(10),
+                          std::size_t(14)}) {  // texel k / 4, channel k % 4
         std::vector<float> v = texels;
         v[k] = texels[k] + eps;
         rig.params->set(name, v);
@@ -255,8 +277,9 @@ TEST_F(GradientTest, TexelGradientMatchesFiniteDifferences)
         const double down = linear_loss(*rig.renderer, weights, spp);
         const double fd = (up - down) / (2.0 * eps);
         const double rel = std::fabs(g[k] - fd) / std::fabs(fd);
-        std::printf("texel %zu channel %zu: adjoint %.7g, finite difference %.7g, relative error %.2e\n", k / 4, k % 4,
-                    g[k], fd, rel);
+        std::printf(
+            "texel %zu channel %zu: adjoint %.7g, finite difference %.7g, relative error %.2e\n",
+            k / 4, k % 4, g[k], fd, rel);
         EXPECT_GT(std::fabs(fd), 1e-4);
         EXPECT_LE(rel, 5e-4);
     }
@@ -315,15 +338,18 @@ TEST_F(GradientTest, GlossyParametersAgreeWithFiniteDifferencesInExpectation)
         std::size_t component;
         float step;
     };
-    const Case cases[] = {{"materials/floor/specular", 0, 0.02f}, {"materials/floor/phong_exponent", 0, 0.5f},
-                          {"materials/red/base_color", 0, 0.02f}, {"materials/red/metallic", 0, 0.02f},
+    const Case cases[] = {{"materials/floor/specular", 0, 0.02f},
+                          {"materials/floor/phong_exponent", 0, 0.5f},
+                          {"materials/red/base_color", 0, 0.02f},
+                          {"materials/red/metallic", 0, 0.02f},
                           {"materials/red/roughness", 0, 0.02f}};
     std::vector<std::vector<double>> adj(std::size(cases)), fd(std::size(cases));
     PathAdjoint adjoint(*rig.renderer);
     for (std::size_t i = 0; i < std::size(cases); ++i)
         for (int k = 0; k < seeds; ++k)
-            adj[i].push_back(adjoint.backward(*rig.renderer, rig.scene, weights, {{cases[i].name}}, spp, 100 + k)
-                                 .at(cases[i].name)[cases[i].component]);
+            adj[i].push_back(
+                adjoint.backward(*rig.renderer, rig.scene, weights, {{cases[i].name}}, spp, 100 + k)
+                    .at(cases[i].name)[cases[i].component]);
     for (int k = 0; k < seeds; ++k) {
         RenderSettings seeded = settings;
         seeded.seed = 200 + k;
@@ -346,9 +372,12 @@ TEST_F(GradientTest, GlossyParametersAgreeWithFiniteDifferencesInExpectation)
         const MeanAndError a = mean_and_error(adj[i]);
         const MeanAndError f = mean_and_error(fd[i]);
         const double tolerance = 4.0 * std::hypot(a.error, f.error) + 0.03 * std::fabs(f.mean);
-        std::printf("%-32s adjoint %.6g +- %.2g, finite difference %.6g +- %.2g, difference %.2g, tolerance %.2g\n",
-                    cases[i].name, a.mean, a.error, f.mean, f.error, a.mean - f.mean, tolerance);
-        EXPECT_GT(std::fabs(a.mean), 4.0 * a.error) << cases[i].name << ": the gradient must stand out of its noise";
+        std::printf(
+            "%-32s adjoint %.6g +- %.2g, finite difference %.6g +- %.2g, difference %.2g, "
+            "tolerance %.2g\n",
+            cases[i].name, a.mean, a.error, f.mean, f.error, a.mean - f.mean, tolerance);
+        EXPECT_GT(std::fabs(a.mean), 4.0 * a.error)
+            << cases[i].name << ": the gradient must stand out of its noise";
         EXPECT_LE(std::fabs(a.mean - f.mean), tolerance) << cases[i].name;
     }
 }
@@ -361,8 +390,8 @@ TEST_F(GradientTest, EnvironmentMapScaleMatchesFiniteDifferences)
     Film map(16, 8);
     map.fill({0.2f, 0.3f, 0.5f, 1.0f});
     map.set(5, 2, {20.0f, 18.0f, 12.0f, 1.0f});
-    const std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("gc-gradient-env-" + std::to_string(::getpid()) + ".pfm");
+    const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                       ("gc-gradient-env-" + std::to_string(::getpid()) + ".pfm");
     write_image(path, map, {});
     RenderSettings settings = small_settings();
     settings.env_map_path = path.string();
@@ -374,7 +403,8 @@ TEST_F(GradientTest, EnvironmentMapScaleMatchesFiniteDifferences)
     const std::uint32_t spp = 16;
     const std::string name = "environment/radiance";
     PathAdjoint adjoint(*rig.renderer);
-    const std::vector<float> g = adjoint.backward(*rig.renderer, rig.scene, weights, {{name}}, spp, settings.seed).at(name);
+    const std::vector<float> g =
+        adjoint.backward(*rig.renderer, rig.scene, weights, {{name}}, spp, settings.seed).at(name);
     const float eps = 1e-3f;
     const std::vector<float> value = rig.params->get(name);
     for (int c = 0; c < 3; ++c) {
@@ -387,8 +417,10 @@ TEST_F(GradientTest, EnvironmentMapScaleMatchesFiniteDifferences)
         const double down = linear_loss(*rig.renderer, weights, spp);
         const double fd = (up - down) / (2.0 * eps);
         const double rel = std::fabs(g[c] - fd) / std::fabs(fd);
-        std::printf("environment map scale [%d]: adjoint %.7g, finite difference %.7g, relative error %.2e\n", c, g[c],
-                    fd, rel);
+        std::printf(
+            "environment map scale [%d]: adjoint %.7g, finite difference %.7g, relative error "
+            "%.2e\n",
+            c, g[c], fd, rel);
         EXPECT_GT(std::fabs(fd), 1e-4);
         EXPECT_LE(rel, 5e-4);
     }
@@ -416,7 +448,8 @@ TEST_F(GradientTest, EmissiveTexelsMatchFiniteDifferences)
     const std::vector<float> texels = rig.params->get(name);
     rig.params->set(name, texels);
     PathAdjoint adjoint(*rig.renderer);
-    const std::vector<float> g = adjoint.backward(*rig.renderer, rig.scene, weights, {{name}}, spp, settings.seed).at(name);
+    const std::vector<float> g =
+        adjoint.backward(*rig.renderer, rig.scene, weights, {{name}}, spp, settings.seed).at(name);
     const float eps = 1e-3f;
     for (std::size_t k : {std::size_t(0), std::size_t(5), std::size_t(10), std::size_t(12)}) {
         std::vector<float> v = texels;
@@ -428,8 +461,10 @@ TEST_F(GradientTest, EmissiveTexelsMatchFiniteDifferences)
         const double down = linear_loss(*rig.renderer, weights, spp);
         const double fd = (up - down) / (2.0 * eps);
         const double rel = std::fabs(g[k] - fd) / std::fabs(fd);
-        std::printf("emissive texel %zu channel %zu: adjoint %.7g, finite difference %.7g, relative error %.2e\n",
-                    k / 4, k % 4, g[k], fd, rel);
+        std::printf(
+            "emissive texel %zu channel %zu: adjoint %.7g, finite difference %.7g, relative error "
+            "%.2e\n",
+            k / 4, k % 4, g[k], fd, rel);
         EXPECT_GT(std::fabs(fd), 1e-4);
         EXPECT_LE(rel, 5e-4);
     }
@@ -453,9 +488,11 @@ TEST_F(GradientTest, MetallicRoughnessTexelsAddUpToTheFactors)
     const RenderSettings settings = small_settings();
     Rig rig(*context, scene, box_camera(), settings);
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
-    const std::vector<std::string> names = {"materials/red/metallic", "materials/red/roughness", "textures/0/texels"};
+    const std::vector<std::string> names = {"materials/red/metallic", "materials/red/roughness",
+                                            "textures/0/texels"};
     PathAdjoint adjoint(*rig.renderer);
-    const Gradients g = adjoint.backward(*rig.renderer, rig.scene, loss_weights(pixels), names, 8, 4);
+    const Gradients g =
+        adjoint.backward(*rig.renderer, rig.scene, loss_weights(pixels), names, 8, 4);
     const std::vector<float> texels = rig.params->get(names[2]);
     const struct {
         std::size_t channel;
@@ -464,7 +501,8 @@ TEST_F(GradientTest, MetallicRoughnessTexelsAddUpToTheFactors)
     } checks[] = {{2, 0.8f, "materials/red/metallic"}, {1, 0.9f, "materials/red/roughness"}};
     for (const auto& c : checks) {
         double sum = 0.0;
-        for (std::size_t j = c.channel; j < texels.size(); j += 4) sum += static_cast<double>(texels[j]) * g.at(names[2])[j];
+        for (std::size_t j = c.channel; j < texels.size(); j += 4)
+            sum += static_cast<double>(texels[j]) * g.at(names[2])[j];
         const double expected = c.factor * static_cast<double>(g.at(c.factor_name)[0]);
         std::printf("%s: sum t dL/dt %.7g, factor dL/dfactor %.7g\n", c.factor_name, sum, expected);
         EXPECT_GT(std::fabs(expected), 1e-5);
@@ -479,7 +517,8 @@ TEST_F(GradientTest, SplitAtomicsGiveTheSameBits)
     Rig rig(*context, open_box(), box_camera(), settings);
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
     std::vector<glm::vec4> weights = loss_weights(pixels);
-    for (std::uint32_t i = 0; i < pixels; i += 3) weights[i] = -weights[i];  // negative sums borrow through the carry
+    for (std::uint32_t i = 0; i < pixels; i += 3)
+        weights[i] = -weights[i];  // negative sums borrow through the carry
     std::vector<std::string> names;
     for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
     PathAdjoint native(*rig.renderer);
@@ -487,8 +526,11 @@ TEST_F(GradientTest, SplitAtomicsGiveTheSameBits)
     const Gradients a = native.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
     const Gradients b = split.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
     for (const std::string& name : names) {
-        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), b.at(name)[0], b.at(name)[1], b.at(name)[2]);
-        EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float))) << name;
+        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), b.at(name)[0], b.at(name)[1],
+                    b.at(name)[2]);
+        EXPECT_EQ(
+            0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float)))
+            << name;
     }
 }
 
@@ -505,7 +547,8 @@ TEST_F(GradientTest, OneBounceFurnaceIsAnalytic)
     camera.look_at = Point3(0, 0, 0);
     Rig rig(*context, white_plane(albedo), camera, settings);
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
-    const std::vector<glm::vec4> uniform(pixels, glm::vec4(glm::vec3(1.0f / static_cast<float>(pixels)), 0.0f));
+    const std::vector<glm::vec4> uniform(
+        pixels, glm::vec4(glm::vec3(1.0f / static_cast<float>(pixels)), 0.0f));
     PathAdjoint adjoint(*rig.renderer);
     const std::vector<std::string> names = {"materials/plane/base_color", "environment/radiance"};
     const Gradients g = adjoint.backward(*rig.renderer, rig.scene, uniform, names, 4, 5);
@@ -531,16 +574,22 @@ TEST(BsdfAlbedoDerivative, MatchesFiniteDifferences)
             m.specular = glm::vec4(0.3f, 0.3f, 0.3f, 20.0f);
             m.pbr = glm::vec4(0.5f + 0.5f * u(rng), 0.3f + 0.25f * u(rng), 0.5f, 0.0f);
             m.emission = glm::vec4(0.0f, 0.0f, 0.0f, 1.5f);
-            const glm::vec3 wo = glm::normalize(glm::vec3(u(rng), u(rng), 0.2f + std::fabs(u(rng))));
-            const glm::vec3 wi = glm::normalize(glm::vec3(u(rng), u(rng), 0.2f + std::fabs(u(rng))));
+            const glm::vec3 wo =
+                glm::normalize(glm::vec3(u(rng), u(rng), 0.2f + std::fabs(u(rng))));
+            const glm::vec3 wi =
+                glm::normalize(glm::vec3(u(rng), u(rng), 0.2f + std::fabs(u(rng))));
             const glm::vec3 albedo(0.5f, 0.4f, 0.3f);
             const float h = 1e-2f;
-            const glm::vec3 fd = (dev::gc_bsdf_eval(m, albedo + h, wo, wi) - dev::gc_bsdf_eval(m, albedo - h, wo, wi)) / (2 * h);
+            const glm::vec3 fd = (dev::gc_bsdf_eval(m, albedo + h, wo, wi) -
+                                  dev::gc_bsdf_eval(m, albedo - h, wo, wi)) /
+                                 (2 * h);
             const float d = dev::gc_bsdf_eval_dalbedo(m, wo, wi);
             for (int c = 0; c < 3; ++c) {
-                const double err = std::fabs(fd[c] - d) / std::max(std::fabs(static_cast<double>(d)), 1e-3);
+                const double err =
+                    std::fabs(fd[c] - d) / std::max(std::fabs(static_cast<double>(d)), 1e-3);
                 worst = std::max(worst, err);
-                ASSERT_LE(err, 1e-3) << "type " << type << " sample " << i << " channel " << c << ": " << d << " vs " << fd[c];
+                ASSERT_LE(err, 1e-3) << "type " << type << " sample " << i << " channel " << c
+                                     << ": " << d << " vs " << fd[c];
             }
         }
     }
@@ -559,9 +608,10 @@ TEST(SceneParamsNames, ListAndErrors)
         std::printf("%s (%zu)\n", p.name.c_str(), p.shape[0]);
         names.push_back(p.name);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"materials/floor/base_color", "materials/red/base_color",
-                                               "materials/light/base_color", "materials/light/emission",
-                                               "environment/radiance"}));
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"materials/floor/base_color", "materials/red/base_color",
+                                        "materials/light/base_color", "materials/light/emission",
+                                        "environment/radiance"}));
     const auto message = [&](const char* name) {
         try {
             resolve_param(s, name);
@@ -570,11 +620,13 @@ TEST(SceneParamsNames, ListAndErrors)
         }
         return std::string("no error");
     };
-    for (const char* name : {"materials/glass/ior", "camera/fov", "materials/glass/base_color", "materials/red/emission"}) {
+    for (const char* name : {"materials/glass/ior", "camera/fov", "materials/glass/base_color",
+                             "materials/red/emission"}) {
         std::printf("%s: %s\n", name, message(name).c_str());
         EXPECT_NE(message(name).find("not differentiable"), std::string::npos) << name;
     }
-    EXPECT_NE(message("materials/nothing/base_color").find("no material 'nothing'"), std::string::npos);
+    EXPECT_NE(message("materials/nothing/base_color").find("no material 'nothing'"),
+              std::string::npos);
     EXPECT_NE(message("materials/red/metallic").find("only glTF materials"), std::string::npos);
     EXPECT_NE(message("textures/3/texels").find("has 0 textures"), std::string::npos);
 }
