@@ -510,6 +510,58 @@ TEST_F(GradientTest, MetallicRoughnessTexelsAddUpToTheFactors)
     }
 }
 
+// With Russian roulette from the first bounce, whose survival follows the throughput (so the
+// albedo), the gradient stays unbiased: means over independent seeds against finite
+// differences, within four standard errors plus 3 %.
+TEST_F(GradientTest, RussianRouletteKeepsTheGradientUnbiased)
+{
+    RenderSettings settings = small_settings();
+    settings.width = 24;
+    settings.height = 18;
+    settings.max_depth = 6;
+    settings.rr_depth = 1;
+    const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
+    const std::vector<glm::vec4> weights = loss_weights(pixels);
+    const std::uint32_t spp = 128;
+    const int seeds = 10;
+    const char* names[] = {"materials/floor/base_color", "materials/red/base_color",
+                           "materials/light/emission"};
+    const float step = 0.02f;
+    std::vector<std::vector<double>> adj(std::size(names)), fd(std::size(names));
+    for (int k = 0; k < seeds; ++k) {
+        RenderSettings seeded = settings;
+        seeded.seed = 300 + k;
+        Rig r(*context, open_box(), box_camera(), seeded);
+        PathAdjoint adjoint(*r.renderer);
+        for (std::size_t i = 0; i < std::size(names); ++i) {
+            adj[i].push_back(
+                adjoint.backward(*r.renderer, r.scene, weights, {{names[i]}}, spp, 400 + k)
+                    .at(names[i])[0]);
+            const std::vector<float> value = r.params->get(names[i]);
+            std::vector<float> v = value;
+            v[0] = value[0] + step;
+            r.params->set(names[i], v);
+            const double up = linear_loss(*r.renderer, weights, spp);
+            v[0] = value[0] - step;
+            r.params->set(names[i], v);
+            const double down = linear_loss(*r.renderer, weights, spp);
+            r.params->set(names[i], value);
+            fd[i].push_back((up - down) / (2.0 * step));
+        }
+    }
+    for (std::size_t i = 0; i < std::size(names); ++i) {
+        const MeanAndError a = mean_and_error(adj[i]);
+        const MeanAndError f = mean_and_error(fd[i]);
+        const double tolerance = 4.0 * std::hypot(a.error, f.error) + 0.03 * std::fabs(f.mean);
+        std::printf(
+            "%-28s adjoint %.6g +- %.2g, finite difference %.6g +- %.2g, difference %.2g, "
+            "tolerance %.2g\n",
+            names[i], a.mean, a.error, f.mean, f.error, a.mean - f.mean, tolerance);
+        EXPECT_GT(std::fabs(a.mean), 4.0 * a.error) << names[i];
+        EXPECT_LE(std::fabs(a.mean - f.mean), tolerance) << names[i];
+    }
+}
+
 // Two 32-bit atomics with a carry give the same sums as 64-bit ones, bit for bit.
 TEST_F(GradientTest, SplitAtomicsGiveTheSameBits)
 {
