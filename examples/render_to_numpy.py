@@ -43,7 +43,7 @@ def main():
 
     albedo = gc.Renderer(scene, device=args.device, aov="albedo", res=tuple(args.res)).render()
     gc.write(args.output, img, metadata=r.metadata())
-    gc.write(pathlib.Path(args.output).with_suffix(".albedo.png"), albedo)
+    gc.write(pathlib.Path(args.output).with_suffix(".albedo.png"), albedo, tonemap="clamp")
     print(f"wrote {args.output} and its albedo; read back: {gc.read(args.output).shape}")
 
 

@@ -1,5 +1,6 @@
 #include "host/app/options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -175,8 +176,21 @@ Options parse_options(const std::vector<std::string>& args)
             if (o.samples_end <= o.samples_first) bad_value(arg, v, "a non-empty sample range A:B with A < B");
             o.partial = true;
         }
+        else if (arg == "--noise-threshold") {
+            const std::string v = value();
+            const float threshold = parse_float(arg, v);
+            if (threshold <= 0.0f) bad_value(arg, v, "a relative standard error > 0, e.g. 0.02");
+            o.render.noise_threshold = threshold;
+        }
         else if (arg == "--chunk-samples")
             o.chunk_samples = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxSpp));
+        else if (arg == "--resume") o.resume_path = value();
+        else if (arg == "--checkpoint-every") {
+            const std::string v = value();
+            o.checkpoint_seconds = parse_float(arg, v);
+            if (o.checkpoint_seconds <= 0.0) bad_value(arg, v, "a positive number of seconds");
+        }
+        else if (arg == "--aovs") o.aovs = parse_aov_layers(value());
         else if (arg == "--threads") o.threads = static_cast<int>(parse_count(arg, value(), 1, kMaxThreads));
         else if (arg == "--wavefront-size")
             o.render.wavefront_size = static_cast<std::uint32_t>(parse_count(arg, value(), 1024, 1u << 26));
@@ -218,6 +232,19 @@ Options parse_options(const std::vector<std::string>& args)
         throw UsageError("--samples " + std::to_string(o.samples_first) + ":" + std::to_string(o.samples_end) +
                          " must start at a multiple of the chunk size (--chunk-samples " +
                          std::to_string(o.chunk_samples) + ")");
+    if (o.partial && (!o.resume_path.empty() || o.checkpoint_seconds > 0 || !o.aovs.empty()))
+        throw UsageError("--resume, --checkpoint-every and --aovs are for a whole frame, not a --samples range");
+    if (!o.resume_path.empty() && std::find_if(o.aovs.begin(), o.aovs.end(), needs_squares) != o.aovs.end())
+        throw UsageError("--aovs variance cannot go with --resume: the resumed samples' squares are not kept");
+    if (o.render.noise_threshold > 0.0 && o.render.integrator != IntegratorKind::Path)
+        throw UsageError(std::string("--noise-threshold needs --integrator path, not ") +
+                         (o.render.integrator == IntegratorKind::Aov ? "an AOV" : integrator_name(o.render.integrator)));
+    if (o.render.noise_threshold > 0.0 && o.partial)
+        throw UsageError("--noise-threshold cannot render a partial image (--samples): its decisions need every "
+                         "earlier sample of the frame");
+    if (o.render.noise_threshold > 0.0 && (!o.resume_path.empty() || o.checkpoint_seconds > 0))
+        throw UsageError("--noise-threshold cannot go with --resume or --checkpoint-every: its check points need "
+                         "the squares of every earlier sample, which partial images do not keep");
     if (!o.help && !o.version && !o.list_devices && o.scene_path.empty())
         throw UsageError("no scene given");
     return o;
@@ -259,7 +286,11 @@ Rendering:
       --aov NAME           preview | albedo | normal | depth | primid   (implies
                            --integrator aov); guide-albedo | guide-normal: albedo and
                            normal seen through mirrors and glass (--denoise's guides)
-      --spp N              samples per pixel (default 64)
+      --spp N              samples per pixel (default 64); with --noise-threshold, the cap
+      --noise-threshold T  adaptive sampling: 8x8 tiles stop once the relative standard
+                           error of every pixel's mean is below T (e.g. 0.02), checked after
+                           16 samples (rounded up to a chunk) and each doubling of that; the
+                           same image on every run and device (path integrator only)
       --time-limit SEC     stop after the pass that crosses SEC seconds (whichever of
                            --spp and --time-limit ends first)
       --res WxH            image size (default 512x512); also --width N, --height N
@@ -277,6 +308,14 @@ Rendering:
 Several devices and machines (a frame is a fixed list of chunks of samples):
       --chunk-samples N    samples per chunk (default 64); part of the frame: partial
                            images merge only with the same chunk size
+      --checkpoint-every SEC
+                           every SEC seconds (at the next complete chunk) and when the
+                           render ends or is stopped (Ctrl-C, SIGTERM, --time-limit),
+                           write the output so far and <output name>.partial.exr: its
+                           complete chunks, for --resume
+      --resume PART.exr    go on from a checkpoint or a --samples 0:B partial image to
+                           --spp: the bits of an uninterrupted render; refuses another
+                           scene, options, seed, size or chunk size (exit 3)
       --samples A:B        render samples [A, B) only (A a multiple of the chunk size)
                            into a partial image (.exr with per-chunk sums and counts, scene
                            and options hashes); a partial render stopped by Ctrl-C or
@@ -286,6 +325,10 @@ Several devices and machines (a frame is a fixed list of chunks of samples):
                            render); refuses different scenes, options or seeds (exit 3) and
                            overlapping or missing samples (exit 7, listing the ranges), and
                            then writes nothing; --spp N: the frame must end at sample N
+AOV layers:
+      --aovs LIST          also write <output name>.aovs.exr, a multi-part OpenEXR with one
+                           part per layer: albedo, normal (16 spp), depth, primid (first
+                           sample), variance, sample-count (the beauty's), comma-separated
 Display (8-bit outputs: .png, .ppm; .exr/.pfm/.hdr/.tif are always linear):
       --tonemap NAME       pbr-neutral (default; Khronos PBR Neutral: base colours kept,
                            highlights rolled off) | agx (Blender's AgX) | aces (Narkowicz's

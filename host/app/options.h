@@ -8,6 +8,7 @@
 
 #include "host/image/display_transform.h"
 #include "host/math/affine.h"
+#include "host/render/aov_layers.h"
 #include "host/render/render_settings.h"
 #include "host/render/session.h"
 
@@ -38,6 +39,9 @@ struct Options {
     std::uint32_t samples_first = 0;
     std::uint32_t samples_end = 0;
     std::uint32_t chunk_samples = 64;  // --chunk-samples: the frame's canonical chunk size
+    std::string resume_path;          // --resume FILE: go on from a checkpoint (resumable_frame.h)
+    double checkpoint_seconds = 0.0;  // --checkpoint-every SEC; 0: no checkpoints
+    std::vector<AovLayer> aovs;       // --aovs: layers written beside the output (aov_layers.h)
     std::optional<Tonemap> tonemap;   // --tonemap: 8-bit outputs' curve (default: pbr-neutral; none for AOVs)
     std::optional<float> exposure_ev; // --exposure EV: 8-bit outputs are scaled by 2^EV first
     bool denoise = false;         // --denoise: Open Image Denoise on the beauty, with albedo/normal guides

@@ -7,13 +7,16 @@
 #include <map>
 #include <optional>
 
+#include "host/app/aov_output.h"
 #include "host/app/environment.h"
+#include "host/app/frame_checkpoints.h"
 #include "host/app/interrupt.h"
 #include "host/app/lighting_check.h"
+#include "host/app/partial_header.h"
 #include "host/cl/device.h"
 #include "host/image/denoise.h"
 #include "host/image/image_io.h"
-#include "host/render/frame_hash.h"
+#include "host/render/adaptive.h"
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
 #include "host/render/denoise_guides.h"
@@ -143,8 +146,9 @@ ExitCode run_render(const Options& options)
 
     install_interrupt_handler();
     // A partial render is a farm's task: SIGTERM (preemption, scancel) stops it like Ctrl-C,
-    // and an interrupted partial render writes nothing.
-    if (options.partial) install_termination_handler();
+    // and an interrupted partial render writes nothing. So may a checkpointed one be, which
+    // then writes its checkpoint.
+    if (options.partial || options.checkpoint_seconds > 0) install_termination_handler();
     ProgressBar::Options progress_options;
     progress_options.quiet = options.quiet;
     progress_options.unit = "spp";
@@ -162,19 +166,10 @@ ExitCode run_render(const Options& options)
 
     FrameOutcome outcome;
     std::uint32_t samples = 0;
+    std::uint64_t pixel_samples = 0;  // over all pixels: fewer than width x height x samples when adaptive
     const RenderSetup setup = render_setup_from_environment();
     if (options.partial) {
-        PartialImage part;
-        part.width = std::uint32_t(settings.width);
-        part.height = std::uint32_t(settings.height);
-        part.scene_hash = hash_text(scene_content_hash(prepared.scene));
-        part.options_hash = hash_text(render_options_hash(settings, prepared.camera, plan.chunk_samples));
-        part.seed = settings.seed;
-        part.chunk_samples = plan.chunk_samples;
-        part.first_sample = plan.first_sample;
-        part.end_sample = plan.end_sample;
-        part.integrator = meta.integrator;
-        part.scene = meta.scene;
+        PartialImage part = partial_image_header(prepared, settings, plan, meta);
         std::map<std::uint32_t, PartialChunk> chunks;
         outcome = render_chunks(devices, prepared, settings, setup, plan, control,
                                 [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
@@ -196,10 +191,25 @@ ExitCode run_render(const Options& options)
         if (part.chunks.empty()) throw DeviceError("the time limit ended the render before any chunk was complete");
         write_partial_image(output, part);
     } else {
-        FrameResult frame = render_frame(devices, prepared, settings, setup, plan, control);
+        const DisplayTransform display = display_transform(options, settings, output);
+        FrameCheckpoints checkpoints(options, output, partial_image_header(prepared, settings, plan, meta), meta, display);
+        control.with_squares = std::any_of(options.aovs.begin(), options.aovs.end(), needs_squares);
+        ResumedFrame resumed;
+        if (settings.noise_threshold > 0.0)  // never with --resume or --checkpoint-every (options.cpp)
+            resumed.frame = render_frame(devices, prepared, settings, setup, plan, control,
+                                         adaptive_rounds(settings.noise_threshold, settings.spp, plan.chunk_samples));
+        else
+            resumed = render_frame_from(devices, prepared, settings, setup, plan, control, checkpoints.take_start(),
+                                        checkpoints.while_rendering());
+        FrameResult& frame = resumed.frame;
         progress.finish();
         outcome = frame.outcome;
         samples = frame.end_sample;
+        pixel_samples = total_samples(frame.sums);
+        if (settings.noise_threshold > 0.0)
+            log_info("adaptive sampling: " + std::to_string(pixel_samples) + " samples in total, mean " +
+                     fixed(double(pixel_samples) / (double(settings.width) * settings.height), 1) + " spp (cap " +
+                     std::to_string(settings.spp) + ")");
         meta.device = device_names(outcome, devices.size() == 1);
         meta.spp = samples;
         meta.seconds = outcome.seconds;
@@ -218,7 +228,11 @@ ExitCode run_render(const Options& options)
             image = denoise(image, &guides.albedo, &guides.normal, denoise_options);
             log_verbose("denoised with Open Image Denoise (albedo and normal guides)");
         }
-        write_image(output, image, meta, display_transform(options, settings, output));
+        write_image(output, image, meta, display);
+        checkpoints.write_final(resumed.complete, meta.device);
+        if (!options.aovs.empty() && outcome.cancelled) log_warning("interrupted: no AOV layers written");
+        if (!options.aovs.empty() && !outcome.cancelled && samples > 0)
+            write_aov_layers(options.aovs, devices.front(), prepared, settings, setup, frame.sums, meta, output);
     }
     prepared = PreparedScene{};
 
@@ -228,8 +242,8 @@ ExitCode run_render(const Options& options)
                     " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
                     (d.failure.empty() ? "" : ", failed: " + d.failure));
     const double render_seconds = outcome.seconds;
-    const double samples_per_second =
-        static_cast<double>(settings.width) * settings.height * samples / std::max(render_seconds, 1e-9);
+    if (options.partial) pixel_samples = std::uint64_t(settings.width) * settings.height * samples;
+    const double samples_per_second = static_cast<double>(pixel_samples) / std::max(render_seconds, 1e-9);
     log_info("wrote " + output.string() + (options.partial ? " (partial, " : " (") + std::to_string(settings.width) +
              "x" + std::to_string(settings.height) + ", " + std::to_string(samples) + " spp, " +
              fixed(render_seconds, 2) + " s, " + fixed(samples_per_second / 1e6, 2) + " Msamples/s on " +

@@ -61,6 +61,43 @@ Film mean_film(const FilmSums& sums)
     return film;
 }
 
+Film sample_variance(const FilmSums& s)
+{
+    if (s.squares.size() != s.sums.size())
+        throw UsageError("the sample variance needs the squared sums, which these film sums do not hold");
+    Film film(s.width, s.height);
+    for (std::size_t i = 0; i < s.sums.size(); ++i) {
+        const double n = i < s.sample_counts.size() ? s.sample_counts[i] : 0;
+        float v[3] = {0, 0, 0};
+        if (n > 1) {
+            for (int c = 0; c < 3; ++c) {
+                const double mean = s.sums[i][c] / n;
+                v[c] = static_cast<float>(std::max(0.0, (s.squares[i][c] / n - mean * mean) * n / (n - 1)));
+            }
+        }
+        film.set(static_cast<std::uint32_t>(i % s.width), static_cast<std::uint32_t>(i / s.width),
+                 Rgba{v[0], v[1], v[2], 1.0f});
+    }
+    return film;
+}
+
+void FrameAccumulator::start_with(FilmSums prefix, std::uint32_t chunks)
+{
+    std::lock_guard lock(m_mutex);
+    if (m_started || chunks == 0) throw UsageError("a frame starts from its first chunks once, before any other");
+    m_frame = std::move(prefix);
+    m_started = true;
+    m_next = m_plan.first_chunk() + chunks;
+    m_folded_end = m_plan.first_sample + chunks * m_plan.chunk_samples;
+}
+
+FilmSums FrameAccumulator::folded(std::uint32_t* chunks) const
+{
+    std::lock_guard lock(m_mutex);
+    if (chunks) *chunks = m_started ? m_next - m_plan.first_chunk() : 0;
+    return m_started ? m_frame : FilmSums{};
+}
+
 void FrameAccumulator::fold_locked(FilmSums&& sums, std::uint32_t count)
 {
     if (!m_started) {
@@ -100,6 +137,12 @@ std::uint32_t FrameAccumulator::samples_folded() const
 {
     std::lock_guard lock(m_mutex);
     return m_started ? m_folded_end - m_plan.first_sample : 0;
+}
+
+FilmSums FrameAccumulator::frame() const
+{
+    std::lock_guard lock(m_mutex);
+    return m_started ? m_frame : FilmSums{};
 }
 
 std::uint32_t FrameAccumulator::next_chunk() const

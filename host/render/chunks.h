@@ -57,6 +57,10 @@ struct ChunkPlan {
     ChunkRange chunk(std::uint32_t n) const;
 };
 
+// Per-pixel sample variance of the samples in `sums` (unbiased: n - 1 in the denominator, n
+// the pixel's sample count; 0 below two samples), alpha 1. Needs the squares.
+Film sample_variance(const FilmSums& sums);
+
 // `into` += `chunk`, pixel by pixel (sums, squares and sample counts). The sizes must match
 // (UsageError otherwise).
 void add_sums(FilmSums& into, const FilmSums& chunk);
@@ -79,8 +83,16 @@ public:
     // frame then ends with it (the frame of range.end() samples has exactly this last chunk).
     void add_truncated(const ChunkRange& range, FilmSums sums);
 
+    // Starts the frame from its first `chunks` chunks, already added in chunk order (a
+    // checkpoint's, partial_image.h); before any add.
+    void start_with(FilmSums prefix, std::uint32_t chunks);
+    // A copy of the frame so far (the complete chunks folded), and in `chunks` how many it holds.
+    FilmSums folded(std::uint32_t* chunks) const;
+
     // Samples folded into the frame so far (a contiguous prefix of the plan).
     std::uint32_t samples_folded() const;
+    // A copy of the frame folded so far (empty sums before the first chunk).
+    FilmSums frame() const;
     // The global index of the next chunk due.
     std::uint32_t next_chunk() const;
     // Folds the best truncated chunk that continues the prefix, and returns the frame (empty

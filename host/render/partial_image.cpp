@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "host/image/atomic_file.h"
+#include "host/image/exr_writer.h"
 #include "host/util/error.h"
 
 #ifndef GC_VERSION
@@ -18,50 +18,22 @@
 namespace gc {
 namespace {
 
-static_assert(std::endian::native == std::endian::little, "the EXR code writes the host's bytes as little-endian");
+static_assert(std::endian::native == std::endian::little, "the EXR code reads the file's bytes as the host's");
 
 constexpr std::int32_t k_uint = 0;
 constexpr std::int32_t k_float = 2;
 
-class Writer {
-public:
-    std::string bytes;
-    template <class T>
-    void value(T v)
-    {
-        bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
-    }
-    void text0(const std::string& s)
-    {
-        bytes += s;
-        bytes += '\0';
-    }
-    void attribute(const std::string& name, const std::string& type, const std::string& data)
-    {
-        text0(name);
-        text0(type);
-        value(std::int32_t(data.size()));
-        bytes += data;
-    }
-};
-
-template <class T>
-std::string raw(const T& v)
+// "4" for a chunk, "0-5" for a folded run of chunks.
+std::string chunk_id(const PartialChunk& c)
 {
-    return std::string(reinterpret_cast<const char*>(&v), sizeof v);
+    const std::string first = std::to_string(c.range.index);
+    return c.folded_chunks > 1 ? first + "-" + std::to_string(c.last_index()) : first;
 }
-
-struct Channel {
-    std::string name;
-    std::int32_t type;
-    std::size_t chunk;  // index into image.chunks
-    int component;      // 0..2 = R, G, B sums; 3 = N
-};
 
 std::string chunk_list(const PartialImage& image)
 {
     std::string out;
-    for (const PartialChunk& c : image.chunks) out += (out.empty() ? "" : ",") + std::to_string(c.range.index);
+    for (const PartialChunk& c : image.chunks) out += (out.empty() ? "" : ",") + chunk_id(c);
     return out;
 }
 
@@ -128,76 +100,30 @@ std::uint32_t parse_uint(const Reader& r, const std::string& what, const std::st
 
 void write_partial_image(const std::filesystem::path& path, const PartialImage& image)
 {
-    // The channels, sorted by name as EXR wants them; pixel data follows that order.
-    std::vector<Channel> channels;
-    for (std::size_t i = 0; i < image.chunks.size(); ++i) {
-        const std::string layer = "chunk" + std::to_string(image.chunks[i].range.index) + ".";
-        channels.push_back({layer + "R", k_float, i, 0});
-        channels.push_back({layer + "G", k_float, i, 1});
-        channels.push_back({layer + "B", k_float, i, 2});
-        channels.push_back({layer + "N", k_uint, i, 3});
-    }
-    std::sort(channels.begin(), channels.end(), [](const Channel& a, const Channel& b) { return a.name < b.name; });
-
-    Writer w;
-    w.value(std::uint32_t(20000630));  // magic 0x762f3101
-    w.value(std::uint32_t(2));         // version 2: single part, scan lines, short names
-    Writer chlist;
-    for (const Channel& c : channels) {
-        chlist.text0(c.name);
-        chlist.value(c.type);
-        chlist.value(std::uint8_t(0));  // pLinear
-        chlist.value(std::uint8_t(0));
-        chlist.value(std::uint8_t(0));
-        chlist.value(std::uint8_t(0));
-        chlist.value(std::int32_t(1));
-        chlist.value(std::int32_t(1));
-    }
-    chlist.value(std::uint8_t(0));
-    w.attribute("channels", "chlist", chlist.bytes);
-    w.attribute("compression", "compression", std::string(1, '\0'));
-    const std::int32_t window[4] = {0, 0, std::int32_t(image.width) - 1, std::int32_t(image.height) - 1};
-    w.attribute("dataWindow", "box2i", raw(window));
-    w.attribute("displayWindow", "box2i", raw(window));
-    w.attribute("lineOrder", "lineOrder", std::string(1, '\0'));
-    w.attribute("pixelAspectRatio", "float", raw(1.0f));
-    const float center[2] = {0.0f, 0.0f};
-    w.attribute("screenWindowCenter", "v2f", raw(center));
-    w.attribute("screenWindowWidth", "float", raw(1.0f));
-    w.attribute("Software", "string", image.software.empty() ? "geocold-cl " GC_VERSION : image.software);
-    w.attribute("geocold:partial", "string", "1");
-    w.attribute("geocold:scene_hash", "string", image.scene_hash);
-    w.attribute("geocold:options_hash", "string", image.options_hash);
-    w.attribute("geocold:seed", "string", std::to_string(image.seed));
-    w.attribute("geocold:chunk_samples", "string", std::to_string(image.chunk_samples));
-    w.attribute("geocold:sample_range", "string",
-                std::to_string(image.first_sample) + ":" + std::to_string(image.end_sample));
-    w.attribute("geocold:chunks", "string", chunk_list(image));
-    w.attribute("geocold:device", "string", image.device);
-    w.attribute("geocold:integrator", "string", image.integrator);
-    w.attribute("geocold:scene", "string", image.scene);
-    w.value(std::uint8_t(0));  // end of header
-
-    const std::uint64_t line_bytes = std::uint64_t(image.width) * 4 * channels.size();
-    std::uint64_t offset = w.bytes.size() + 8ull * image.height;
-    for (std::uint32_t y = 0; y < image.height; ++y) {
-        w.value(offset);
-        offset += 8 + line_bytes;
-    }
-    w.bytes.reserve(static_cast<std::size_t>(offset));
-    for (std::uint32_t y = 0; y < image.height; ++y) {
-        w.value(std::int32_t(y));
-        w.value(std::int32_t(line_bytes));
-        for (const Channel& c : channels) {
-            const FilmSums& s = image.chunks[c.chunk].sums;
-            const std::size_t row = std::size_t(y) * image.width;
-            for (std::uint32_t x = 0; x < image.width; ++x) {
-                if (c.component < 3) w.value(s.sums[row + x][c.component]);
-                else w.value(s.sample_counts[row + x]);
-            }
+    ExrPart part;
+    for (const PartialChunk& c : image.chunks) {
+        const std::string layer = "chunk" + chunk_id(c) + ".";
+        const char* names[3] = {"R", "G", "B"};
+        for (int k = 0; k < 3; ++k) {
+            ExrChannel channel{layer + names[k], ExrPixelType::Float, {}};
+            channel.bits.reserve(c.sums.sums.size());
+            for (const glm::vec4& v : c.sums.sums) channel.bits.push_back(std::bit_cast<std::uint32_t>(v[k]));
+            part.channels.push_back(std::move(channel));
         }
+        part.channels.push_back({layer + "N", ExrPixelType::Uint, c.sums.sample_counts});
     }
-    detail::replace_file_atomically(path, [&](const std::filesystem::path& tmp) { detail::write_bytes(tmp, w.bytes, path); });
+    part.text = {{"Software", image.software.empty() ? "geocold-cl " GC_VERSION : image.software},
+                 {"geocold:partial", "1"},
+                 {"geocold:scene_hash", image.scene_hash},
+                 {"geocold:options_hash", image.options_hash},
+                 {"geocold:seed", std::to_string(image.seed)},
+                 {"geocold:chunk_samples", std::to_string(image.chunk_samples)},
+                 {"geocold:sample_range", std::to_string(image.first_sample) + ":" + std::to_string(image.end_sample)},
+                 {"geocold:chunks", chunk_list(image)},
+                 {"geocold:device", image.device},
+                 {"geocold:integrator", image.integrator},
+                 {"geocold:scene", image.scene}};
+    write_exr(path, image.width, image.height, {part});
 }
 
 PartialImage read_partial_image(const std::filesystem::path& path)
@@ -296,20 +222,31 @@ PartialImage read_partial_image(const std::filesystem::path& path)
     while (p < list.size()) {
         std::size_t comma = list.find(',', p);
         if (comma == std::string::npos) comma = list.size();
-        const std::uint32_t index = parse_uint(r, "a chunk id", list.substr(p, comma - p));
+        const std::string id = list.substr(p, comma - p);
         p = comma + 1;
-        if (index < plan.first_chunk() || index - plan.first_chunk() >= plan.chunk_count())
-            r.fail("chunk " + std::to_string(index) + " lies outside its sample range " + range);
-        if (!image.chunks.empty() && index <= image.chunks.back().range.index)
+        const std::size_t dash = id.find('-');
+        const std::uint32_t index = parse_uint(r, "a chunk id", id.substr(0, dash));
+        const std::uint32_t last = dash == std::string::npos ? index : parse_uint(r, "a chunk id", id.substr(dash + 1));
+        for (const std::uint32_t i : {index, last})
+            if (i < plan.first_chunk() || i - plan.first_chunk() >= plan.chunk_count())
+                r.fail("chunk " + std::to_string(i) + " lies outside its sample range " + range);
+        if (!image.chunks.empty() && index <= image.chunks.back().last_index())
             r.fail("geocold:chunks is not in increasing order");
         PartialChunk c;
         c.range = plan.chunk(index - plan.first_chunk());
+        if (dash != std::string::npos) {
+            const ChunkRange end = plan.chunk(last - plan.first_chunk());
+            if (index != 0 || last <= index || end.count != image.chunk_samples)
+                r.fail("the folded chunks '" + id + "' do not run from chunk 0 over whole chunks");
+            c.range.count = end.end() - c.range.first;
+            c.folded_chunks = last - index + 1;
+        }
         c.sums.width = image.width;
         c.sums.height = image.height;
         const std::size_t pixels = std::size_t(image.width) * image.height;
         c.sums.sums.assign(pixels, glm::vec4(0.0f));
         c.sums.sample_counts.assign(pixels, 0);
-        const std::string layer = "chunk" + std::to_string(index) + ".";
+        const std::string layer = "chunk" + id + ".";
         const char* names[4] = {"R", "G", "B", "N"};
         for (int k = 0; k < 4; ++k) {
             const auto it = channel_types.find(layer + names[k]);
@@ -364,13 +301,27 @@ std::string range_text(std::uint32_t a, std::uint32_t b) { return std::to_string
 
 }  // namespace
 
+std::optional<FrameDifference> frame_difference(const PartialImage& image, const PartialImage& like)
+{
+    const auto size = [](const PartialImage& p) { return std::to_string(p.width) + "x" + std::to_string(p.height); };
+    if (image.width != like.width || image.height != like.height) return FrameDifference{"size", size(image), size(like)};
+    if (image.scene_hash != like.scene_hash) return FrameDifference{"scene hash", image.scene_hash, like.scene_hash};
+    if (image.options_hash != like.options_hash)
+        return FrameDifference{"render-options hash", image.options_hash, like.options_hash};
+    if (image.seed != like.seed) return FrameDifference{"seed", std::to_string(image.seed), std::to_string(like.seed)};
+    if (image.chunk_samples != like.chunk_samples)
+        return FrameDifference{"chunk size", std::to_string(image.chunk_samples), std::to_string(like.chunk_samples)};
+    return std::nullopt;
+}
+
 MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths, std::optional<std::uint32_t> expected_spp)
 {
     if (paths.empty()) throw UsageError("merge: no partial images given");
     MergedFrame merged;
     // First pass: every file read and checked, only its header and chunk list kept, so that
     // memory holds one file at a time (a farm's partials together can exceed it).
-    std::map<std::uint32_t, std::pair<ChunkRange, std::size_t>> chunks;  // index -> range, file
+    std::map<std::uint32_t, std::pair<ChunkRange, std::size_t>> chunks;  // first index -> range, file
+    std::map<std::uint32_t, std::size_t> owner;  // every chunk index held -> file
     std::vector<std::size_t> chunks_left(paths.size(), 0);
     for (std::size_t f = 0; f < paths.size(); ++f) {
         PartialImage image = read_partial_image(paths[f]);
@@ -378,29 +329,23 @@ MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths
             merged.first = image;
             merged.first.chunks.clear();
         } else {
-            const PartialImage& a = merged.first;
-            const auto differs = [&](const std::string& what, const std::string& mine, const std::string& theirs) {
-                throw InputError("partial image '" + paths[f].string() + "': its " + what + " (" + mine +
-                                 ") differs from that of '" + paths[0].string() + "' (" + theirs +
+            if (const auto d = frame_difference(image, merged.first))
+                throw InputError("partial image '" + paths[f].string() + "': its " + d->what + " (" + d->mine +
+                                 ") differs from that of '" + paths[0].string() + "' (" + d->theirs +
                                  "): the two are not parts of one frame");
-            };
-            if (image.width != a.width || image.height != a.height)
-                differs("size", std::to_string(image.width) + "x" + std::to_string(image.height),
-                        std::to_string(a.width) + "x" + std::to_string(a.height));
-            if (image.scene_hash != a.scene_hash) differs("scene hash", image.scene_hash, a.scene_hash);
-            if (image.options_hash != a.options_hash) differs("render-options hash", image.options_hash, a.options_hash);
-            if (image.seed != a.seed) differs("seed", std::to_string(image.seed), std::to_string(a.seed));
-            if (image.chunk_samples != a.chunk_samples)
-                differs("chunk size", std::to_string(image.chunk_samples), std::to_string(a.chunk_samples));
         }
         if (std::find(merged.devices.begin(), merged.devices.end(), image.device) == merged.devices.end())
             merged.devices.push_back(image.device);
         for (const PartialChunk& c : image.chunks) {
-            const auto it = chunks.find(c.range.index);
-            if (it != chunks.end())
-                throw IncompleteError("partial images '" + paths[it->second.second].string() + "' and '" +
-                                      paths[f].string() + "' overlap: both hold chunk " + std::to_string(c.range.index) +
-                                      " (samples " + range_text(c.range.first, c.range.end()) + ")");
+            for (std::uint32_t i = c.range.index; i <= c.last_index(); ++i) {
+                const auto [it, added] = owner.emplace(i, f);
+                if (!added) {
+                    const ChunkRange one = ChunkPlan{0, c.range.end(), image.chunk_samples}.chunk(i);
+                    throw IncompleteError("partial images '" + paths[it->second].string() + "' and '" +
+                                          paths[f].string() + "' overlap: both hold chunk " + std::to_string(i) +
+                                          " (samples " + range_text(one.first, one.end()) + ")");
+                }
+            }
             chunks.emplace(c.range.index, std::make_pair(c.range, f));
             ++chunks_left[f];
         }
@@ -447,9 +392,7 @@ MergedFrame merge_partial_images(const std::vector<std::filesystem::path>& paths
         if (file == open.end()) {
             file = open.emplace(f, read_partial_image(paths[f])).first;
             const PartialImage& again = file->second;
-            if (again.scene_hash != merged.first.scene_hash || again.options_hash != merged.first.options_hash ||
-                again.seed != merged.first.seed || again.width != merged.first.width ||
-                again.height != merged.first.height || again.chunk_samples != size)
+            if (frame_difference(again, merged.first))
                 throw InputError("partial image '" + paths[f].string() + "' changed while it was being merged");
         }
         PartialChunk* chunk = nullptr;

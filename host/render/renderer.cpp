@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "host/render/chunks.h"
 #include "host/render/environment.h"
 #include "host/render/scene_convert.h"
 #include "host/render/wavefront_path.h"
@@ -57,6 +58,8 @@ Renderer::Renderer(const cl::Context& context, std::shared_ptr<const DeviceScene
     const std::uint32_t pixels = m_params.width * m_params.height;
     m_film.sums = film_buffer(context, pixels, "film");
     m_film.squares = film_buffer(context, pixels, "film squares");
+    // A placeholder until select_pixels: the path kernels take the list either way.
+    m_film.pixel_list = cl::Buffer<std::uint32_t>::create(context, 1, CL_MEM_READ_ONLY, "pixel list");
     clear();
 }
 
@@ -92,6 +95,31 @@ void Renderer::set_env_radiance(const glm::vec3& radiance)
     clear();
 }
 
+void Renderer::select_pixels(std::vector<std::uint32_t> pixels)
+{
+    if (m_settings.integrator != IntegratorKind::Path)
+        throw UsageError(std::string("only the path integrator renders selected pixels, not ") +
+                         integrator_name(m_settings.integrator));
+    const std::uint32_t image = m_params.width * m_params.height;
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        if (pixels[i] >= image || (i > 0 && pixels[i] <= pixels[i - 1]))
+            throw UsageError("selected pixels must be strictly ascending indices below " + std::to_string(image) +
+                             " (entry " + std::to_string(i) + " is " + std::to_string(pixels[i]) + ")");
+    if (m_film.pixel_list.count() < std::max<std::size_t>(pixels.size(), 1))
+        m_film.pixel_list = cl::Buffer<std::uint32_t>::create(m_context, image, CL_MEM_READ_ONLY, "pixel list");
+    m_film.pixel_list.write(pixels);
+    m_pixel_list = std::move(pixels);
+    m_pixels_listed = true;
+    clear(m_next_sample);
+}
+
+void Renderer::select_all_pixels()
+{
+    m_pixel_list.clear();
+    m_pixels_listed = false;
+    clear(m_next_sample);
+}
+
 void Renderer::follow_scene_updates()
 {
     if (m_scene->revision == m_scene_revision) return;
@@ -122,7 +150,8 @@ void Renderer::render(std::uint32_t first_sample, std::uint32_t count)
 std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
 {
     follow_scene_updates();
-    const std::uint32_t pixels = m_params.width * m_params.height;
+    const std::uint32_t pixels =
+        m_pixels_listed ? static_cast<std::uint32_t>(m_pixel_list.size()) : m_params.width * m_params.height;
     std::uint32_t samples = 1;
     if (m_integrator->plans_passes_by_time()) {
         samples = m_planner.next(max_samples);
@@ -135,6 +164,8 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     m_params.sample_index = m_next_sample;
     m_params.samples_in_pass = samples;
     m_params.pixels_per_item = 1;
+    m_params.flags &= ~GC_RENDER_PIXEL_LIST;
+    if (m_pixels_listed) m_params.flags |= GC_RENDER_PIXEL_LIST;
     m_integrator->begin_pass(m_params);
     for (std::uint32_t offset = 0; offset < pixels; offset += m_batch_pixels) {
         m_params.pixel_offset = offset;
@@ -160,8 +191,17 @@ FilmSums Renderer::sums(bool with_squares) const
         out.squares.resize(m_film.squares.count());
         m_film.squares.read(out.squares);
     }
-    out.sample_counts.assign(out.sums.size(), m_sample_count);
+    out.sample_counts = pixel_sample_counts();
     return out;
+}
+
+std::vector<std::uint32_t> Renderer::pixel_sample_counts() const
+{
+    const std::size_t pixels = std::size_t(m_params.width) * m_params.height;
+    if (!m_pixels_listed) return std::vector<std::uint32_t>(pixels, m_sample_count);
+    std::vector<std::uint32_t> counts(pixels, 0u);
+    for (std::uint32_t p : m_pixel_list) counts[p] = m_sample_count;
+    return counts;
 }
 
 Film Renderer::film() const
@@ -169,9 +209,10 @@ Film Renderer::film() const
     const std::size_t pixels = m_film.sums.count();
     std::vector<glm::vec4> sums(pixels);
     m_film.sums.read(sums);
+    const std::vector<std::uint32_t> counts = pixel_sample_counts();
     Film film(m_params.width, m_params.height);
-    const float inv = m_sample_count > 0 ? 1.0f / static_cast<float>(m_sample_count) : 0.0f;
     for (std::size_t i = 0; i < pixels; ++i) {
+        const float inv = counts[i] > 0 ? 1.0f / static_cast<float>(counts[i]) : 0.0f;
         const std::uint32_t x = static_cast<std::uint32_t>(i % m_params.width);
         const std::uint32_t y = static_cast<std::uint32_t>(i / m_params.width);
         film.set(x, y, Rgba{sums[i].x * inv, sums[i].y * inv, sums[i].z * inv, 1.0f});
@@ -179,23 +220,6 @@ Film Renderer::film() const
     return film;
 }
 
-Film Renderer::variance() const
-{
-    const FilmSums s = sums();
-    Film film(m_params.width, m_params.height);
-    const double n = m_sample_count;
-    for (std::size_t i = 0; i < s.sums.size(); ++i) {
-        float v[3] = {0, 0, 0};
-        if (n > 1) {
-            for (int c = 0; c < 3; ++c) {
-                const double mean = s.sums[i][c] / n;
-                v[c] = static_cast<float>(std::max(0.0, (s.squares[i][c] / n - mean * mean) * n / (n - 1)));
-            }
-        }
-        film.set(static_cast<std::uint32_t>(i % m_params.width), static_cast<std::uint32_t>(i / m_params.width),
-                 Rgba{v[0], v[1], v[2], 1.0f});
-    }
-    return film;
-}
+Film Renderer::variance() const { return sample_variance(sums()); }
 
 }  // namespace gc

@@ -90,6 +90,7 @@ _MATERIAL_FIELDS = ("type", "base_color", "specular", "emission", "phong_exponen
                     "metallic", "roughness", "transmission", "normal_scale", "alpha_cutoff",
                     "double_sided")
 _VEC3_FIELDS = ("base_color", "specular", "emission")
+_CAMERA_FIELDS = ("look_from", "look_at", "up", "fov", "aperture", "focus_distance")
 
 
 class Material:
@@ -187,12 +188,15 @@ class Materials(Mapping[str, Material]):
 
 
 class Camera:
-    """The scene's camera: ``look_from``, ``look_at``, ``up`` and ``fov`` (full vertical field of
-    view, degrees). The file's camera, or the CLI's framing of the scene when it has none.
+    """The scene's camera: ``look_from``, ``look_at``, ``up``, ``fov`` (full vertical field of
+    view, degrees), and a thin lens: ``aperture`` (the lens radius in scene units; 0, the
+    default, is a pinhole) and ``focus_distance`` (along the view axis; 0 focuses on
+    ``look_at``), as the CLI's ``--aperture`` and ``--focus-distance``. The file's camera, or
+    the CLI's framing of the scene when it has none.
 
     Assignments take effect at every renderer's next render (its film restarts). A camera the
-    CLI would refuse (look_from == look_at, up along the view, fov outside (0, 180)) raises
-    :class:`ArgumentError`."""
+    CLI would refuse (look_from == look_at, up along the view, fov outside (0, 180), a negative
+    aperture or focus distance) raises :class:`ArgumentError`."""
 
     __slots__ = ("_scene",)
 
@@ -202,47 +206,47 @@ class Camera:
     def _get(self) -> Dict[str, Any]:
         return self._scene._core.camera()
 
+    def _apply(self, c: Dict[str, Any]) -> None:
+        self._scene._core.set_camera(c["look_from"], c["look_at"], c["up"], c["fov"], c["aperture"],
+                                     c["focus_distance"])
+
     def __getattr__(self, field: str) -> Any:
-        if field in ("look_from", "look_at", "up", "fov"):
+        if field in _CAMERA_FIELDS:
             return self._get()[field]
         raise AttributeError(f"Camera has no attribute {field!r}")
 
     def __setattr__(self, field: str, value: Any) -> None:
-        c = self._get()
-        if field in ("look_from", "look_at", "up"):
-            c[field] = _vec3(value, f"camera/{field}")
-        elif field == "fov":
-            try:
-                c["fov"] = float(value)
-            except (TypeError, ValueError):
-                raise ArgumentError(f"camera/fov must be a number, not {value!r}") from None
-        else:
+        if field not in _CAMERA_FIELDS:
             raise AttributeError(f"Camera has no editable attribute {field!r}")
-        self._scene._core.set_camera(c["look_from"], c["look_at"], c["up"], c["fov"])
+        self.set(**{field: value})
 
     def set(self, look_from: Optional[Vec3] = None, look_at: Optional[Vec3] = None,
-            up: Optional[Vec3] = None, fov: Optional[float] = None) -> None:
+            up: Optional[Vec3] = None, fov: Optional[float] = None, aperture: Optional[float] = None,
+            focus_distance: Optional[float] = None) -> None:
         """Changes several fields at once (checked together)."""
         c = self._get()
-        if look_from is not None:
-            c["look_from"] = _vec3(look_from, "camera/look_from")
-        if look_at is not None:
-            c["look_at"] = _vec3(look_at, "camera/look_at")
-        if up is not None:
-            c["up"] = _vec3(up, "camera/up")
-        if fov is not None:
-            c["fov"] = float(fov)
-        self._scene._core.set_camera(c["look_from"], c["look_at"], c["up"], c["fov"])
+        for field, value in (("look_from", look_from), ("look_at", look_at), ("up", up)):
+            if value is not None:
+                c[field] = _vec3(value, f"camera/{field}")
+        for field, value in (("fov", fov), ("aperture", aperture), ("focus_distance", focus_distance)):
+            if value is not None:
+                try:
+                    c[field] = float(value)
+                except (TypeError, ValueError):
+                    raise ArgumentError(f"camera/{field} must be a number, not {value!r}") from None
+        self._apply(c)
 
     def __repr__(self) -> str:
         c = self._get()
-        return f"Camera(look_from={c['look_from']}, look_at={c['look_at']}, up={c['up']}, fov={c['fov']:g})"
+        return (f"Camera(look_from={c['look_from']}, look_at={c['look_at']}, up={c['up']}, fov={c['fov']:g}, "
+                f"aperture={c['aperture']:g}, focus_distance={c['focus_distance']:g})")
 
 
 class Params(Mapping[str, Any]):
     """Everything editable in the scene as one flat name -> value view, Mitsuba style:
     ``"materials/<name>/base_color"``, ``"materials/<name>/roughness"``, ...,
-    ``"camera/look_from"``, ``"camera/look_at"``, ``"camera/up"``, ``"camera/fov"``.
+    ``"camera/look_from"``, ``"camera/look_at"``, ``"camera/up"``, ``"camera/fov"``,
+    ``"camera/aperture"``, ``"camera/focus_distance"``.
 
     ``params[key] = value`` edits the scene as the attribute would; ``params.update({...})``
     sets several."""
@@ -257,15 +261,15 @@ class Params(Mapping[str, Any]):
         for name in self._scene.materials:
             for f in _MATERIAL_FIELDS:
                 yield f"materials/{name}/{f}"
-        for f in ("look_from", "look_at", "up", "fov"):
+        for f in _CAMERA_FIELDS:
             yield f"camera/{f}"
 
     def __len__(self) -> int:
-        return len(self._scene.materials) * len(_MATERIAL_FIELDS) + 4
+        return len(self._scene.materials) * len(_MATERIAL_FIELDS) + len(_CAMERA_FIELDS)
 
     def _target(self, key: str) -> Tuple[Any, str]:
         parts = key.split("/")
-        if len(parts) == 2 and parts[0] == "camera" and parts[1] in ("look_from", "look_at", "up", "fov"):
+        if len(parts) == 2 and parts[0] == "camera" and parts[1] in _CAMERA_FIELDS:
             return self._scene.camera, parts[1]
         if len(parts) >= 3 and parts[0] == "materials" and parts[-1] in _MATERIAL_FIELDS:
             name = "/".join(parts[1:-1])
@@ -340,19 +344,21 @@ class Scene:
 
 def load(path: Union[str, "_os.PathLike[str]"], *, gltf_scene: int = -1,
          look_from: Optional[Vec3] = None, look_at: Optional[Vec3] = None,
-         up: Optional[Vec3] = None, fov: Optional[float] = None) -> Scene:
+         up: Optional[Vec3] = None, fov: Optional[float] = None, aperture: Optional[float] = None,
+         focus_distance: Optional[float] = None) -> Scene:
     """Loads a ``.obj``/``.mtl``, ``.gltf`` or ``.glb`` file and builds its BVH.
 
     The camera is the file's, or framed on the scene as the CLI frames it; ``look_from``,
-    ``look_at``, ``up`` and ``fov`` override it like ``--look-from`` etc. ``gltf_scene``
+    ``look_at``, ``up``, ``fov``, ``aperture`` and ``focus_distance`` override it like
+    ``--look-from`` etc. (:class:`Camera`). ``gltf_scene``
     picks a glTF scene (-1: the file's default). Raises :class:`SceneError` naming the file
     on bad input."""
     path = _os.fspath(path)
     if not isinstance(path, str):
         raise ArgumentError(f"load: path must be a str or os.PathLike, not {type(path).__name__}")
     scene = Scene(_geocold.load(path, int(gltf_scene)))
-    if any(v is not None for v in (look_from, look_at, up, fov)):
-        scene.camera.set(look_from, look_at, up, fov)
+    if any(v is not None for v in (look_from, look_at, up, fov, aperture, focus_distance)):
+        scene.camera.set(look_from, look_at, up, fov, aperture, focus_distance)
     return scene
 
 
@@ -501,7 +507,7 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
                  integrator: str = "path", aov: Optional[str] = None, res: Tuple[int, int] = (512, 512),
                  max_depth: int = 8, seed: int = 0, rr_depth: int = 5,
                  env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
-                 time_limit: float = 0.0) -> Tuple[Any, int]:
+                 time_limit: float = 0.0, noise_threshold: float = 0.0) -> Tuple[Any, int]:
     """Renders one frame on several devices at once, as ``geocold-cl --device all``.
 
     ``devices``: ``"all"``, or a list of device specs (as :class:`Renderer`'s ``device``). The
@@ -510,7 +516,9 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
     CLI with the same ``--chunk-samples``. ``samples=(a, b)``: only samples [a, b) (``a`` a
     multiple of ``chunk_samples``), like ``--samples a:b``. Returns ``(image, spp)``: the mean
     (float32 (H, W, 4)) and the samples per pixel in it (fewer than asked when ``time_limit``
-    ended the frame). Ctrl-C raises ``KeyboardInterrupt``."""
+    ended the frame). ``noise_threshold=T`` (> 0), like ``--noise-threshold T``: adaptive
+    sampling, each 8x8 tile stopping once its pixels' relative standard error is below ``T``,
+    ``spp`` the cap; the same image on every run. Ctrl-C raises ``KeyboardInterrupt``."""
     if not isinstance(scene, Scene):
         raise ArgumentError(f"render_frame: scene must be a geocold.Scene, not {type(scene).__name__}")
     if isinstance(devices, str):
@@ -536,22 +544,27 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
                              ("seed", seed, 0), ("rr_depth", rr_depth, 0), ("first sample", first, 0)):
         if isinstance(value, bool) or not isinstance(value, int) or not low <= value < 2 ** 32:
             raise ArgumentError(f"render_frame: {name} must be an integer in [{low}, 2^32), not {value!r}")
+    if isinstance(noise_threshold, bool) or not isinstance(noise_threshold, (int, float)):
+        raise ArgumentError(f"render_frame: noise_threshold must be a number, not {noise_threshold!r}")
     return _geocold.render_frame(scene._core, specs, integrator, aov, width, height, first, end, chunk_samples,
-                                 seed, max_depth, rr_depth, env, env_map or "", float(time_limit))
+                                 seed, max_depth, rr_depth, env, env_map or "", float(time_limit),
+                                 float(noise_threshold))
 
 
 _META_KEYS = ("device", "integrator", "scene", "spp", "seconds", "seed")
 
 
 def write(path: Union[str, "_os.PathLike[str]"], image: Any,
-          metadata: Optional[Mapping[str, Any]] = None, *, tonemap: str = "clamp", exposure: float = 0.0) -> None:
+          metadata: Optional[Mapping[str, Any]] = None, *, tonemap: str = "pbr-neutral",
+          exposure: float = 0.0) -> None:
     """Writes an (H, W, 3 or 4) image (linear RGB, row 0 = top) to ``path``, atomically, as the
     CLI writes: ``.exr`` (float RGBA with ``geocold:*`` metadata), ``.png`` (sRGB 8 bit),
     ``.pfm``, ``.ppm``, and the other formats OpenImageIO writes. ``metadata`` keys:
     ``device``, ``integrator``, ``scene``, ``spp``, ``seconds``, ``seed`` (a
     :meth:`Renderer.metadata` dict fits). 8-bit formats go through the display transform
-    ``tonemap`` (``"clamp"``, the default: a clip at 1; ``"pbr-neutral"``, the CLI's default;
-    ``"agx"``, ``"aces"``, ``"none"``) after ``exposure`` stops; float formats stay linear.
+    ``tonemap`` after ``exposure`` stops: ``"pbr-neutral"`` (the default, as the CLI's for a
+    rendered image), ``"clamp"`` (a clip at 1: what the CLI writes for an AOV, so pass it for
+    albedos and other data), ``"agx"``, ``"aces"``, ``"none"``. Float formats stay linear.
     Raises :class:`OutputError` naming the file."""
     import numpy as np
 

@@ -64,13 +64,17 @@ class Materials(Mapping[str, Material]):
         """The material at ``index`` in the file's order."""
 
 class Camera:
-    """The scene's camera (editable): look_from, look_at, up, fov (vertical, degrees)."""
+    """The scene's camera (editable): look_from, look_at, up, fov (vertical, degrees), and a thin
+    lens: aperture (lens radius; 0 = pinhole) and focus_distance (0 = to look_at)."""
     look_from: Vec3
     look_at: Vec3
     up: Vec3
     fov: float
+    aperture: float
+    focus_distance: float
     def set(self, look_from: Optional[Vec3] = ..., look_at: Optional[Vec3] = ..., up: Optional[Vec3] = ...,
-            fov: Optional[float] = ...) -> None:
+            fov: Optional[float] = ..., aperture: Optional[float] = ...,
+            focus_distance: Optional[float] = ...) -> None:
         """Changes several fields at once (checked together)."""
 
 class Params(Mapping[str, Any]):
@@ -100,7 +104,8 @@ class Scene:
     def timings(self) -> Dict[str, float]: ...
 
 def load(path: PathLike, *, gltf_scene: int = ..., look_from: Optional[Vec3] = ..., look_at: Optional[Vec3] = ...,
-         up: Optional[Vec3] = ..., fov: Optional[float] = ...) -> Scene:
+         up: Optional[Vec3] = ..., fov: Optional[float] = ..., aperture: Optional[float] = ...,
+         focus_distance: Optional[float] = ...) -> Scene:
     """Loads a .obj/.mtl, .gltf or .glb file and builds its BVH; SceneError naming the file on bad input."""
 
 class Sums:
@@ -134,8 +139,9 @@ def render_frame(scene: Scene, devices: Union[str, List[Union[str, int, Device]]
                  samples: Optional[Tuple[int, int]] = ..., chunk_samples: int = ..., integrator: str = ...,
                  aov: Optional[str] = ..., res: Tuple[int, int] = ..., max_depth: int = ..., seed: int = ...,
                  rr_depth: int = ..., env: Union[float, Vec3] = ..., env_map: Optional[str] = ...,
-                 time_limit: float = ...) -> Tuple[Image, int]:
-    """One frame on several devices (chunks added in chunk order); returns (mean image, spp)."""
+                 time_limit: float = ..., noise_threshold: float = ...) -> Tuple[Image, int]:
+    """One frame on several devices (chunks added in chunk order); returns (mean image, spp).
+    noise_threshold > 0: adaptive sampling, spp the cap."""
 
 def denoise(color: Any, albedo: Any = ..., normal: Any = ..., *, clean_aux: bool = ...) -> Any: ...
 def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ..., *, tonemap: str = ...,

@@ -145,5 +145,18 @@ TEST(Options, ThinLens)
     EXPECT_NE(usage_error({"--focus-distance", "0", "s.obj"}).find("--focus-distance"), std::string::npos);
 }
 
+TEST(Options, CheckpointsResumeAndAovLayers)
+{
+    const Options o = parse({"s.obj", "--checkpoint-every", "30", "--resume", "part.exr", "--aovs", "depth,albedo"});
+    EXPECT_EQ(o.checkpoint_seconds, 30.0);
+    EXPECT_EQ(o.resume_path, "part.exr");
+    EXPECT_EQ(o.aovs, (std::vector<AovLayer>{AovLayer::Depth, AovLayer::Albedo}));
+    EXPECT_NE(usage_error({"s.obj", "--checkpoint-every", "0"}).find("--checkpoint-every"), std::string::npos);
+    EXPECT_NE(usage_error({"s.obj", "--aovs", "depth,"}).find("unknown layer ''"), std::string::npos);
+    EXPECT_NE(usage_error({"s.obj", "--aovs", "variance", "--resume", "p.exr"}).find("variance"), std::string::npos);
+    EXPECT_NE(usage_error({"s.obj", "--samples", "0:8", "--checkpoint-every", "5"}).find("--samples"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace gc

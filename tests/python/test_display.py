@@ -6,8 +6,8 @@ import pytest
 
 def test_tonemap_applies_to_eight_bit_outputs_only(gc, tmp_path):
     img = np.ones((2, 3, 3), np.float32)
-    gc.write(tmp_path / "clamp.ppm", img)
-    gc.write(tmp_path / "neutral.ppm", img, tonemap="pbr-neutral")
+    gc.write(tmp_path / "clamp.ppm", img, tonemap="clamp")
+    gc.write(tmp_path / "neutral.ppm", img)  # the CLI's default for a rendered image
     gc.write(tmp_path / "neutral.pfm", img, tonemap="pbr-neutral", exposure=1.0)
     assert np.allclose(gc.read(tmp_path / "clamp.ppm")[..., :3], 1.0)
     # Khronos PBR Neutral maps 1.0 to 0.8690909 (KhronosGroup/ToneMapping, PBR_Neutral).

@@ -90,3 +90,27 @@ def test_camera_edit_equals_the_cli_overrides(gc, device):
         cam.fov = 180
     with pytest.raises(ValueError):
         cam.look_at = cam.look_from
+
+
+def test_thin_lens_equals_the_cli_flags(gc, device, cli, tmp_path):
+    import subprocess
+    from test_render import read_pfm
+    out = tmp_path / "cli.pfm"
+    subprocess.run([cli, "--quiet", "--device", device, "--res", f"{RES[0]}x{RES[1]}", "--spp", "4",
+                    "--aperture", "0.05", "--focus-distance", "2.5", str(CORNELL), "-o", str(out)], check=True)
+    scene = gc.load(CORNELL)
+    r = gc.Renderer(scene, device=device, res=RES)
+    pinhole = r.render(spp=4)
+    scene.camera.set(aperture=0.05, focus_distance=2.5)
+    assert scene.params["camera/aperture"] == pytest.approx(0.05)
+    lens = r.render(spp=4)
+    assert not np.array_equal(pinhole, lens)
+    assert np.array_equal(lens[..., :3].view(np.uint32), read_pfm(out).view(np.uint32))
+    loaded = gc.load(CORNELL, aperture=0.05, focus_distance=2.5)
+    assert np.array_equal(lens, gc.Renderer(loaded, device=device, res=RES).render(spp=4))
+    scene.camera.aperture = 0  # back to the pinhole, bit for bit
+    assert np.array_equal(r.render(spp=4), pinhole)
+    with pytest.raises(gc.ArgumentError):
+        scene.camera.aperture = -1
+    with pytest.raises(gc.ArgumentError):
+        scene.camera.focus_distance = "far"

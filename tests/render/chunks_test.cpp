@@ -103,6 +103,48 @@ TEST(FrameAccumulator, ACutChunkEndsTheFrameOnlyWhenItIsNext)
     EXPECT_TRUE(same_bits(got, expected));
 }
 
+// A frame started from its first chunks already folded (a checkpoint) and continued has the
+// bits of the frame added from chunk 0; folded() is the prefix a checkpoint writes.
+TEST(FrameAccumulator, StartsFromAFoldedPrefix)
+{
+    const ChunkPlan plan = ChunkPlan::for_range(0, 100, 16);
+    FilmSums expected = fake_chunk(0, 16);
+    for (std::uint32_t n = 1; n < plan.chunk_count(); ++n) add_sums(expected, fake_chunk(n, plan.chunk(n).count));
+
+    FrameAccumulator first(plan);
+    for (std::uint32_t n : {0u, 2u, 1u}) first.add(plan.chunk(n), fake_chunk(n, 16));
+    std::uint32_t chunks = 0;
+    FilmSums prefix = first.folded(&chunks);
+    EXPECT_EQ(chunks, 3u);
+
+    FrameAccumulator resumed(plan);
+    resumed.start_with(std::move(prefix), chunks);
+    EXPECT_EQ(resumed.samples_folded(), 48u);
+    EXPECT_EQ(resumed.next_chunk(), 3u);
+    for (std::uint32_t n = plan.chunk_count(); n-- > 3;) resumed.add(plan.chunk(n), fake_chunk(n, plan.chunk(n).count));
+    std::uint32_t end = 0;
+    EXPECT_TRUE(same_bits(resumed.finish(&end), expected));
+    EXPECT_EQ(end, 100u);
+}
+
+TEST(SampleVariance, IsTheUnbiasedVariancePerPixel)
+{
+    // Samples 1, 2, 6 in red: mean 3, variance (4 + 1 + 9) / 2 = 7. One sample: 0.
+    FilmSums s;
+    s.width = 2;
+    s.height = 1;
+    s.sums = {{9.0f, 0.0f, 0.0f, 3.0f}, {5.0f, 0.0f, 0.0f, 1.0f}};
+    s.squares = {{41.0f, 0.0f, 0.0f, 3.0f}, {25.0f, 0.0f, 0.0f, 1.0f}};
+    s.sample_counts = {3, 1};
+    const Film v = sample_variance(s);
+    std::printf("  variance of {1, 2, 6}: %g (expected 7)\n", v.at(0, 0).r);
+    EXPECT_FLOAT_EQ(v.at(0, 0).r, 7.0f);
+    EXPECT_EQ(v.at(0, 0).g, 0.0f);
+    EXPECT_EQ(v.at(1, 0).r, 0.0f);
+    s.squares.clear();
+    EXPECT_THROW(sample_variance(s), UsageError);
+}
+
 TEST(MeanFilm, DividesBySampleCount)
 {
     FilmSums s = fake_chunk(3, 7, 2, 1);

@@ -138,6 +138,47 @@ TEST(PartialImage, MergeRefusesGapsOverlapsAndOtherFrames)
     EXPECT_THROW(merge_partial_images({dir / "p0.exr", dir / "seed.exr"}), InputError);
 }
 
+// A checkpoint's folded run: chunks 0..2 added in chunk order as one layer. It round-trips,
+// merges with the chunks after it into the bits of the frame, and counts as all of its chunks
+// when another file holds one of them.
+TEST(PartialImage, AFoldedRunFromChunkZeroMergesLikeItsChunks)
+{
+    const fs::path dir = out_dir();
+    const PartialImage whole = part(0, 40);
+    PartialImage run = part(0, 40);
+    run.chunks.resize(1);
+    for (std::size_t i = 1; i < 3; ++i) add_sums(run.chunks[0].sums, whole.chunks[i].sums);
+    run.chunks[0].range = ChunkRange{0, 0, 24};
+    run.chunks[0].folded_chunks = 3;
+    write_partial_image(dir / "run.exr", run);
+    const PartialImage read = read_partial_image(dir / "run.exr");
+    ASSERT_EQ(read.chunks.size(), 1u);
+    EXPECT_EQ(read.chunks[0].range, (ChunkRange{0, 0, 24}));
+    EXPECT_EQ(read.chunks[0].folded_chunks, 3u);
+    EXPECT_EQ(read.chunks[0].last_index(), 2u);
+
+    write_partial_image(dir / "rest.exr", part(24, 40));
+    FilmSums expected = whole.chunks[0].sums;
+    for (std::size_t i = 1; i < whole.chunks.size(); ++i) add_sums(expected, whole.chunks[i].sums);
+    const MergedFrame m = merge_partial_images({dir / "rest.exr", dir / "run.exr"}, 40u);
+    EXPECT_EQ(m.spp, 40u);
+    EXPECT_EQ(std::memcmp(m.sums.sums.data(), expected.sums.data(), expected.sums.size() * sizeof(glm::vec4)), 0);
+
+    write_partial_image(dir / "chunk2.exr", part(16, 24));
+    const std::string why = message_of([&] { merge_partial_images({dir / "run.exr", dir / "chunk2.exr"}); });
+    EXPECT_NE(why.find("chunk2.exr' overlap: both hold chunk 2 (samples 16:24)"), std::string::npos) << why;
+
+    // A folded run must start at chunk 0: elsewhere its sum is not a step of the frame's.
+    PartialImage late = part(8, 40);
+    late.chunks.resize(1);
+    late.chunks[0].range = ChunkRange{1, 8, 16};
+    late.chunks[0].folded_chunks = 2;
+    write_partial_image(dir / "late.exr", late);
+    const std::string late_why = message_of([&] { read_partial_image(dir / "late.exr"); });
+    EXPECT_NE(late_why.find("late.exr': the folded chunks '1-2' do not run from chunk 0"), std::string::npos)
+        << late_why;
+}
+
 TEST(PartialImage, BadFilesAreInputErrorsNamingTheFile)
 {
     const fs::path dir = out_dir();
