@@ -48,17 +48,35 @@ DeviceScene DeviceScene::upload(const cl::Context& context, const Scene& scene, 
     return d;
 }
 
-void DeviceScene::update_materials(const cl::Context& context, const Scene& scene)
+void DeviceScene::check_update(const Scene& scene, const char* what) const
 {
     if (scene.triangle_count() != triangle_count || scene.materials.size() != materials.count())
-        throw UsageError("a material update needs the uploaded scene: it has " + std::to_string(triangle_count) +
-                         " triangles and " + std::to_string(materials.count()) + " materials, the update " +
-                         std::to_string(scene.triangle_count()) + " and " + std::to_string(scene.materials.size()));
+        throw UsageError(std::string("a ") + what + " update needs the uploaded scene: it has " +
+                         std::to_string(triangle_count) + " triangles and " + std::to_string(materials.count()) +
+                         " materials, the update " + std::to_string(scene.triangle_count()) + " and " +
+                         std::to_string(scene.materials.size()));
+}
+
+void DeviceScene::update_materials(const cl::Context& context, const Scene& scene)
+{
+    check_update(scene, "material");
     std::size_t scene_texels = 0;
-    for (const Texture& t : scene.textures) scene_texels += t.texels.size();
+    for (const Texture& t : scene.textures) scene_texels += t.device_words();
     if (scene_texels != texels.count())
         throw UsageError("a material update cannot change the textures: the device holds " +
                          std::to_string(texels.count()) + " texels, the update's scene " + std::to_string(scene_texels));
+    apply_material_update(context, scene);
+}
+
+void DeviceScene::update_textures(const cl::Context& context, const Scene& scene)
+{
+    check_update(scene, "texture");
+    texels = cl::read_only_buffer(context, make_textures(scene).texels, "texels");
+    apply_material_update(context, scene);
+}
+
+void DeviceScene::apply_material_update(const cl::Context& context, const Scene& scene)
+{
     const std::vector<dev::GcMaterial> new_materials = make_materials(scene);
     materials.write(std::span<const dev::GcMaterial>(new_materials));
     // The materials index texture views (texture_views): a changed uv transform may add or

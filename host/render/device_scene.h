@@ -73,9 +73,18 @@ struct DeviceScene {
     // materials' uv transforms choose, are made again); a renderer rebuilds its
     // program only if the edit changed the kernel features.
     void update_materials(const cl::Context& context, const Scene& scene);
+    // As update_materials, and the texels too (an optimiser's edit of a texture, which may
+    // now be stored as linear floats, Texture::linear).
+    void update_textures(const cl::Context& context, const Scene& scene);
 
     static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
                               const EnvironmentMap& environment = {}, const DeviceTuning& tuning = {});
+
+private:
+    // UsageError unless `scene` has the uploaded scene's triangles and materials.
+    void check_update(const Scene& scene, const char* what) const;
+    // The materials, texture views, emitters and summary from `scene`, and a new revision.
+    void apply_material_update(const cl::Context& context, const Scene& scene);
 };
 
 }  // namespace gc

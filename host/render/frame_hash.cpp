@@ -80,6 +80,7 @@ std::uint64_t scene_content_hash(const Scene& scene)
         add_value(h, t.width);
         add_value(h, t.height);
         add_vector(h, t.texels);
+        add_vector(h, t.linear);
         add_value(h, std::uint8_t(t.srgb));
         add_value(h, t.wrap_s);
         add_value(h, t.wrap_t);

@@ -88,6 +88,13 @@ void Renderer::set_camera(const Camera& camera)
     clear();
 }
 
+void Renderer::set_env_radiance(const glm::vec3& radiance)
+{
+    m_settings.env_radiance = radiance;
+    update_params();
+    clear();
+}
+
 void Renderer::select_pixels(std::vector<std::uint32_t> pixels)
 {
     if (m_settings.integrator != IntegratorKind::Path)

@@ -71,6 +71,8 @@ public:
 
     // Points the camera elsewhere; the film restarts.
     void set_camera(const Camera& camera);
+    // Sets the constant environment's radiance (or the environment map's scale); the film restarts.
+    void set_env_radiance(const glm::vec3& radiance);
     // The passes that follow render only `pixels` (indices y * width + x, strictly ascending;
     // UsageError otherwise, or for an integrator other than path); the others get no samples
     // and count none (sums()). Each listed pixel gets the bits it gets in a render of every

@@ -201,7 +201,7 @@ TextureViews texture_views(const Scene& scene)
 {
     TextureViews out;
     std::size_t total = 0;
-    for (const Texture& t : scene.textures) total += t.texels.size();
+    for (const Texture& t : scene.textures) total += t.device_words();
     if (total > std::numeric_limits<std::uint32_t>::max())
         throw InputError(scene.source_path + ": textures hold " + std::to_string(total) +
                          " texels, more than the 2^32 a texel index can address");
@@ -214,10 +214,11 @@ TextureViews texture_views(const Scene& scene)
         auto wrap_flags = [](WrapMode mode, std::uint32_t clamp_flag, std::uint32_t mirror_flag) {
             return mode == WrapMode::ClampToEdge ? clamp_flag : (mode == WrapMode::MirroredRepeat ? mirror_flag : 0u);
         };
-        d.flags = (t.srgb ? GC_TEXF_SRGB : 0u) | wrap_flags(t.wrap_s, GC_TEXF_CLAMP_S, GC_TEXF_MIRROR_S) |
+        const bool linear = !t.linear.empty();
+        d.flags = (linear ? GC_TEXF_FLOAT : (t.srgb ? GC_TEXF_SRGB : 0u)) | wrap_flags(t.wrap_s, GC_TEXF_CLAMP_S, GC_TEXF_MIRROR_S) |
                   wrap_flags(t.wrap_t, GC_TEXF_CLAMP_T, GC_TEXF_MIRROR_T) | (t.nearest ? GC_TEXF_NEAREST : 0u);
         out.views.push_back(d);
-        offset += static_cast<std::uint32_t>(t.texels.size());
+        offset += static_cast<std::uint32_t>(t.device_words());
     }
     // Transformed views, deduplicated on the texture and the bits of the rows uploaded.
     std::map<std::pair<int, std::array<std::uint32_t, 6>>, std::uint32_t> transformed;
@@ -254,9 +255,16 @@ DeviceTextures make_textures(const Scene& scene)
     DeviceTextures out;
     out.textures = texture_views(scene).views;
     std::size_t total = 0;
-    for (const Texture& t : scene.textures) total += t.texels.size();
+    for (const Texture& t : scene.textures) total += t.device_words();
     out.texels.reserve(total);
-    for (const Texture& t : scene.textures) out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
+    for (const Texture& t : scene.textures) {
+        if (t.linear.empty()) {
+            out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
+            continue;
+        }
+        for (const glm::vec4& v : t.linear)
+            for (int c = 0; c < 4; ++c) out.texels.push_back(std::bit_cast<std::uint32_t>(v[c]));
+    }
     return out;
 }
 

@@ -68,10 +68,17 @@ struct Texture {
     int width = 0;
     int height = 0;
     std::vector<std::uint32_t> texels; // RGBA8, R in the low byte, row 0 = top of the image
+    // Where not empty, the texels as linear RGBA floats (same order), which the device reads
+    // instead of `texels`: a texture an optimiser edits (scene_params.h) keeps its precision.
+    std::vector<glm::vec4> linear;
     bool srgb = true;            // colour textures are sRGB-encoded; data textures are not
     WrapMode wrap_s = WrapMode::Repeat;
     WrapMode wrap_t = WrapMode::Repeat;
     bool nearest = false;
+
+    // 32-bit words the texture occupies in the device's texel buffer: one per RGBA8 texel,
+    // four per linear float texel.
+    std::size_t device_words() const { return linear.empty() ? texels.size() : 4 * linear.size(); }
 };
 
 struct Camera {

@@ -45,6 +45,8 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
     ls.pdf_w = 0.0f;
     ls.dist = 0.0f;
     ls.kind = GC_LIGHT_NONE;
+    ls.material = GC_INVALID;
+    ls.uv = make_float2(0.0f, 0.0f);
     const float group_pmf = gc_light_group_pmf(params);
     if (!(group_pmf > 0.0f)) return ls;
     const uint groups = gc_uint(1.0f / group_pmf + 0.5f);
@@ -67,13 +69,15 @@ GC_FUNC GcLightSample gc_sample_light(GC_SHADE_PARAMS, GcRenderParams params, fl
         ls.wi = to_light / dist;
         const float cos_light = gc_dot(GC_XYZ(la.ng), -ls.wi);
         if (!gc_emits_toward(lm, cos_light)) return ls;
-        ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, gc_triangle_uv(la, b));
+        ls.uv = gc_triangle_uv(la, b);
+        ls.radiance = gc_shade_emission(GC_SHADE_ARGS, lm, ls.uv);
         ls.pdf_w = group_pmf * gc_light_pdf_w(GC_XYZ(lm.emission), params.emitter_power, dist, cos_light);
         /* The shadow ray from p must stop short of the light's own triangle: its t there carries
          * error in proportion to both ends' magnitudes. */
         ls.target = gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -ls.wi), gc_spawn_scale(p, la.ng.w));
         ls.dist = dist;
         ls.kind = GC_LIGHT_AREA;
+        ls.material = la.material;
         return ls;
     }
     /* The constants drop each group's code from programs built for scenes without it. */

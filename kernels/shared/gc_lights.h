@@ -119,6 +119,8 @@ GC_STRUCT(GcLightSample) {
     float pdf_w;     /* solid-angle density including the group choice; delta: the pmf */
     float dist;      /* GC_FLOAT_MAX for the environment */
     uint kind;       /* 0 none, 1 area, 2 point (delta), 3 environment */
+    uint material;   /* an area light's material (its emission's gradient slot); else GC_INVALID */
+    float2 uv;       /* an area light's texture coordinates at the point (its emission's texels) */
 } GC_STRUCT_END(GcLightSample)
 
 #define GC_LIGHT_NONE 0u

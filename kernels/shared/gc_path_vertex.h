@@ -54,6 +54,23 @@ GC_STRUCT(GcVertexResult) {
 /* v with a w component (the path state's packed float4s). */
 GC_FUNC float4 gc_with_w(float3 v, float w) { return make_float4(v.x, v.y, v.z, w); }
 
+/* The MIS weight of emission that `path`'s last segment hit at distance t with cos_out to the
+ * emitter's geometric normal, against next-event estimation of the same point. Shared with
+ * the adjoint (gc_path_adjoint.h), which must weight exactly as the primal did. */
+GC_FUNC float gc_emission_mis_weight(GcRenderParams params, GcPathState path, GcMaterial m, float t, float cos_out)
+{
+    if ((path.flags & GC_PATH_SPECULAR) != 0u || params.num_emitters == 0u) return 1.0f;
+    return gc_power_heuristic(path.throughput.w,
+                              gc_light_group_pmf(params) * gc_light_pdf_w(GC_XYZ(m.emission), params.emitter_power, t, cos_out));
+}
+
+/* Next-event estimation's MIS weight for the light sample ls seen in local direction wi. A
+ * point light is a delta: no BSDF sample can reach it, so no MIS. */
+GC_FUNC float gc_nee_mis_weight(GcLightSample ls, GcMaterial m, float3 albedo, float3 wo, float3 wi)
+{
+    return ls.kind == GC_LIGHT_POINT ? 1.0f : gc_power_heuristic(ls.pdf_w, gc_bsdf_pdf(m, albedo, wo, wi));
+}
+
 /* Shades the vertex where `ray` (the path's last segment) ended with `hit`. */
 GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray, GcHit hit)
 {
@@ -122,11 +139,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     const float3 Le = gc_shade_emission(GC_SHADE_ARGS, m, s.uv);
     const float cos_out = gc_dot(s.ng, wo_world);
     if ((Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) && gc_emits_toward(m, cos_out)) {
-        float w = 1.0f;
-        if ((path.flags & GC_PATH_SPECULAR) == 0u && params.num_emitters > 0u)
-            w = gc_power_heuristic(path.throughput.w, gc_light_group_pmf(params) *
-                                                          gc_light_pdf_w(GC_XYZ(m.emission), params.emitter_power, hit.t, cos_out));
-        L += beta * Le * w;
+        L += beta * Le * gc_emission_mis_weight(params, path, m, hit.t, cos_out);
     }
     if (path.depth >= params.max_depth) {
         path.radiance = gc_with_w(L, path.radiance.w);
@@ -145,8 +158,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
         if (ls.kind != GC_LIGHT_NONE && ls.pdf_w > 0.0f) {
             const float3 wi = gc_frame_to_local(frame, ls.wi);
             const float3 f = gc_bsdf_eval(m, albedo, wo, wi);
-            /* A point light is a delta: no BSDF sample can reach it, so no MIS. */
-            const float w = ls.kind == GC_LIGHT_POINT ? 1.0f : gc_power_heuristic(ls.pdf_w, gc_bsdf_pdf(m, albedo, wo, wi));
+            const float w = gc_nee_mis_weight(ls, m, albedo, wo, wi);
             const float3 contribution = beta * f * (fabs(wi.z) * w / ls.pdf_w) * ls.radiance;
             if (contribution.x > 0.0f || contribution.y > 0.0f || contribution.z > 0.0f) {
                 const float3 origin = gc_offset_ray_origin(s.p, gc_side_normal(s.ng, ls.wi), s.spawn_scale);

@@ -48,7 +48,17 @@ GC_FUNC uint gc_wrap_index(int x, int size, bool repeat)
     return gc_uint(x < 0 ? 0 : (x >= size ? size - 1 : x));
 }
 
-GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float v)
+/* The texels a lookup at (u, v) reads: their indices within the view's texture (row-major,
+ * texel (x, y) is y * width + x) and the bilinear fractions, or one texel for nearest
+ * filtering. The lookup (gc_texture_sample) and the adjoint, which scatters a lookup's
+ * gradient back to its texels, both start from it. Register-only. */
+GC_STRUCT(GcTexelFootprint) {
+    uint4 index;  /* (x0, y0), (x1, y0), (x0, y1), (x1, y1); nearest: index.x only */
+    float2 frac;  /* bilinear fx, fy */
+    uint nearest;
+} GC_STRUCT_END(GcTexelFootprint)
+
+GC_FUNC GcTexelFootprint gc_texture_footprint(GcTexture tex, float u, float v)
 {
     /* A view's uv transform (KHR_texture_transform), only where the view has one, so that
      * untransformed lookups keep their bits. Terms in a fixed order; no contraction. */
@@ -65,7 +75,6 @@ GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float 
     const bool clamp_t = (tex.flags & GC_TEXF_CLAMP_T) != 0u;
     const bool mirror_s = (tex.flags & GC_TEXF_MIRROR_S) != 0u;
     const bool mirror_t = (tex.flags & GC_TEXF_MIRROR_T) != 0u;
-    const bool srgb = (tex.flags & GC_TEXF_SRGB) != 0u;
     const int w = gc_int(tex.width);
     const int h = gc_int(tex.height);
     const float x = gc_wrap_unit(u, clamp_s, mirror_s) * gc_float(w) - 0.5f;
@@ -73,23 +82,48 @@ GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float 
     const bool repeat_s = !clamp_s && !mirror_s;
     const bool repeat_t = !clamp_t && !mirror_t;
 
+    GcTexelFootprint fp;
     if ((tex.flags & GC_TEXF_NEAREST) != 0u) {
         const uint xi = gc_wrap_index(gc_int(floor(x + 0.5f)), w, repeat_s);
         const uint yi = gc_wrap_index(gc_int(floor(y + 0.5f)), h, repeat_t);
-        return gc_unpack_texel(GC_TEXEL(tex.offset + yi * tex.width + xi), srgb);
+        fp.index = make_uint4(yi * tex.width + xi, 0u, 0u, 0u);
+        fp.frac = make_float2(0.0f, 0.0f);
+        fp.nearest = 1u;
+        return fp;
     }
     const float x0 = floor(x);
     const float y0 = floor(y);
-    const float fx = x - x0;
-    const float fy = y - y0;
     const uint xa = gc_wrap_index(gc_int(x0), w, repeat_s);
     const uint xb = gc_wrap_index(gc_int(x0) + 1, w, repeat_s);
     const uint ya = gc_wrap_index(gc_int(y0), h, repeat_t);
     const uint yb = gc_wrap_index(gc_int(y0) + 1, h, repeat_t);
-    const float4 t00 = gc_unpack_texel(GC_TEXEL(tex.offset + ya * tex.width + xa), srgb);
-    const float4 t10 = gc_unpack_texel(GC_TEXEL(tex.offset + ya * tex.width + xb), srgb);
-    const float4 t01 = gc_unpack_texel(GC_TEXEL(tex.offset + yb * tex.width + xa), srgb);
-    const float4 t11 = gc_unpack_texel(GC_TEXEL(tex.offset + yb * tex.width + xb), srgb);
+    fp.index = make_uint4(ya * tex.width + xa, ya * tex.width + xb, yb * tex.width + xa, yb * tex.width + xb);
+    fp.frac = make_float2(x - x0, y - y0);
+    fp.nearest = 0u;
+    return fp;
+}
+
+/* Texel `index` of the view's texture, linear RGBA. */
+GC_FUNC float4 gc_texel_value(GC_TEXELS_PARAM, GcTexture tex, uint index)
+{
+    if ((tex.flags & GC_TEXF_FLOAT) != 0u) {
+        const uint w = tex.offset + 4u * index;
+        return make_float4(gc_as_float(GC_TEXEL(w)), gc_as_float(GC_TEXEL(w + 1u)), gc_as_float(GC_TEXEL(w + 2u)),
+                           gc_as_float(GC_TEXEL(w + 3u)));
+    }
+    return gc_unpack_texel(GC_TEXEL(tex.offset + index), (tex.flags & GC_TEXF_SRGB) != 0u);
+}
+
+GC_FUNC float4 gc_texture_sample(GC_TEXELS_PARAM, GcTexture tex, float u, float v)
+{
+    const GcTexelFootprint fp = gc_texture_footprint(tex, u, v);
+    if (fp.nearest != 0u) return gc_texel_value(GC_TEXELS_ARG, tex, fp.index.x);
+    const float fx = fp.frac.x;
+    const float fy = fp.frac.y;
+    const float4 t00 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.x);
+    const float4 t10 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.y);
+    const float4 t01 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.z);
+    const float4 t11 = gc_texel_value(GC_TEXELS_ARG, tex, fp.index.w);
     const float4 top = t00 * (1.0f - fx) + t10 * fx;
     const float4 bottom = t01 * (1.0f - fx) + t11 * fx;
     return top * (1.0f - fy) + bottom * fy;

@@ -177,6 +177,7 @@ GC_STRUCT(GcMaterial) {
 #define GC_TEXF_MIRROR_T 16u
 #define GC_TEXF_NEAREST 32u
 #define GC_TEXF_TRANSFORM 64u    /* uv_u/uv_v hold a uv transform (glTF KHR_texture_transform) */
+#define GC_TEXF_FLOAT 128u       /* texels are linear RGBA float32, four words each (an optimised texture) */
 
 /* A texture view is width * height RGBA8 texels (one uint each, R in the low byte) starting at
  * `offset` in the shared texel buffer, read through an optional affine uv transform: with

@@ -1,0 +1,72 @@
+// Gradients of a loss of the path integrator's image with respect to the scene's named
+// parameters (scene_params.h), by path replay backpropagation (kernels/adjoint.cl):
+//
+//     Renderer renderer(context, scene, bvh, camera, settings);
+//     renderer.render(0, 4);
+//     std::vector<glm::vec4> d_loss = ...;   // d loss / d (each pixel's mean), row 0 at the top
+//     PathAdjoint adjoint(renderer);
+//     Gradients g = adjoint.backward(renderer, scene, d_loss, {"materials/red/base_color"}, 4, 1);
+//
+// The pass renders the renderer's scene, camera and settings with its own seed and sample
+// count: give it a seed other than the image's for an unbiased gradient of a loss of that
+// image (the same seed correlates the two, which finite-difference checks want). The sums
+// are exact 64-bit fixed-point integers (gc_grad_slots.h), so a gradient is the same bits
+// run to run on one device.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "host/cl/kernel.h"
+#include "host/cl/program.h"
+#include "host/render/renderer.h"
+
+namespace gc {
+
+// Parameter name -> its gradient, flattened in the parameter's shape.
+using Gradients = std::map<std::string, std::vector<float>>;
+
+// How the last backward pass accumulated (for reports and tests).
+struct GradientStats {
+    int scale_exponent = 0;         // one slot unit is 2^-scale_exponent
+    float max_contribution = 0.0f;  // the largest |contribution| one vertex added
+    bool rescaled = false;          // the first guess of the scale was too fine: the pass ran again
+};
+
+// How the kernel adds to the 64-bit slots: with 64-bit atomics where the device has them
+// (else two 32-bit ones), or always with two 32-bit ones (to test that way on any device).
+enum class SlotAtomics { Auto, Split32 };
+
+class PathAdjoint {
+public:
+    // Builds kernels/adjoint.cl for `renderer`'s scene (again by backward if its features change).
+    explicit PathAdjoint(const Renderer& renderer, SlotAtomics atomics = SlotAtomics::Auto);
+
+    // d loss / d parameter for every name in `params` (UsageError for names that are unknown
+    // or not differentiable), from `spp` samples per pixel (indices 0 .. spp - 1) with `seed`.
+    // `loss_grad` has one entry per pixel (alpha ignored): d loss / d the pixel's mean radiance.
+    // `scene` is the host scene the renderer's device scene was made from (it names the
+    // parameters).
+    Gradients backward(const Renderer& renderer, const Scene& scene,
+                       std::span<const glm::vec4> loss_grad, std::span<const std::string> params,
+                       std::uint32_t spp, std::uint32_t seed);
+
+    const GradientStats& stats() const { return m_stats; }
+
+private:
+    void build(const Renderer& renderer);
+
+    const cl::Context& m_context;
+    SlotAtomics m_atomics;
+    KernelFeatures m_features;
+    std::unique_ptr<cl::Program> m_program;
+    cl::Kernel m_kernel;
+    GradientStats m_stats;
+};
+
+}  // namespace gc

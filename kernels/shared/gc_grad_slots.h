@@ -1,0 +1,85 @@
+/*
+ * gc_grad_slots.h — where the adjoint of the path integrator (kernels/adjoint.cl) adds each
+ * parameter's gradient, and how: one 64-bit fixed-point slot per scalar parameter.
+ *
+ * Layout (read by the host, host/render/gradients.cpp):
+ *     material i, field f     i * GC_GRAD_MATERIAL_STRIDE + f   (GC_GRAD_FIELD_*)
+ *     environment radiance    env_slot + channel                 (env_slot = materials * stride)
+ *     texel j of a texture    view_slots[view] + 4 j + channel   (views of textures asked for;
+ *                                                                 GC_INVALID for the others)
+ *
+ * Fixed point, not floating-point atomics (docs/decisions/deterministic-gradients.md):
+ * integer addition is associative, so the sum is the same bits in whatever order the
+ * work-items add. A contribution x becomes round(x * scale), scale = 2^e chosen by the host
+ * so that no sum can overflow; the largest |x| of the pass is kept (an atomic max on its
+ * float bits, also order-independent) so that the host can check that choice afterwards.
+ * Devices with cl_khr_int64_base_atomics add with one 64-bit atomic; others with two 32-bit
+ * ones, the low word's carry added to the high word (the final value is the same, exact).
+ */
+#ifndef GC_GRAD_SLOTS_H
+#define GC_GRAD_SLOTS_H
+
+#define GC_GRAD_MATERIAL_STRIDE 16u
+#define GC_GRAD_FIELD_BASE_COLOR 0u     /* rgb */
+#define GC_GRAD_FIELD_EMISSION 3u       /* rgb */
+#define GC_GRAD_FIELD_SPECULAR 6u       /* rgb: Phong's Ks, the mirror's reflectance */
+#define GC_GRAD_FIELD_PHONG_EXPONENT 9u
+#define GC_GRAD_FIELD_METALLIC 10u
+#define GC_GRAD_FIELD_ROUGHNESS 11u
+#define GC_GRAD_ENV_SLOTS 3u
+
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+
+#if defined(cl_khr_int64_base_atomics) && !defined(GC_GRAD_SPLIT_ATOMICS)
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+#define GC_GRAD_INT64_ATOMICS 1
+#endif
+
+/* Where the adjoint's gradients go. */
+typedef struct {
+    __global ulong* slots;
+    __global uint* max_bits; /* the largest |contribution| of the pass, as float bits */
+    __global const uint* view_slots; /* per texture view: its texels' first slot, or GC_INVALID */
+    float scale;             /* 2^e: one unit of a slot is 1 / scale */
+    uint env_slot;
+} GcGradTarget;
+
+/* Adds v to slot i, exactly and in any order. */
+static inline void gc_grad_add_fixed(__global ulong* slots, uint i, long v)
+{
+#if defined(GC_GRAD_INT64_ATOMICS)
+    atom_add(&slots[i], (ulong)v);
+#else
+    /* Little-endian: the low word first. Both words wrap modulo 2^32, and the carry out of the
+     * low word goes into the high one, so the two words end as the 64-bit sum. */
+    __global uint* words = (__global uint*)slots;
+    const uint lo = (uint)((ulong)v);
+    const uint hi = (uint)((ulong)v >> 32);
+    const uint old = atomic_add(&words[2u * i], lo);
+    const uint carry = old + lo < old ? 1u : 0u;
+    if (hi + carry != 0u) atomic_add(&words[2u * i + 1u], hi + carry);
+#endif
+}
+
+/* Adds the contribution x to slot i. Non-finite ones are dropped, as the film drops
+ * non-finite samples (gc_film_value). */
+static inline void gc_grad_add(GcGradTarget g, uint i, float x)
+{
+    if (!isfinite(x) || x == 0.0f) return;
+    atomic_max(g.max_bits, as_uint(fabs(x)));
+    const long v = convert_long_sat_rte(x * g.scale);
+    if (v != 0) gc_grad_add_fixed(g.slots, i, v);
+}
+
+static inline void gc_grad_add3(GcGradTarget g, uint first, float3 x)
+{
+    gc_grad_add(g, first, x.x);
+    gc_grad_add(g, first + 1u, x.y);
+    gc_grad_add(g, first + 2u, x.z);
+}
+
+static inline uint gc_grad_material_slot(uint material, uint field) { return material * GC_GRAD_MATERIAL_STRIDE + field; }
+
+#endif /* OpenCL C */
+
+#endif /* GC_GRAD_SLOTS_H */
