@@ -54,6 +54,23 @@ TEST(KernelFeatures, EachFeatureIsSeen)
     EXPECT_EQ(program_options(f), "-D GC_USE_MATERIALS=" + std::to_string(f.material_types) + "u");
 }
 
+TEST(KernelFeatures, LayerTexturesCountOnlyWithTheirLayer)
+{
+    // The kernels read a KHR_materials_* layer's textures only when its flag is set.
+    std::vector<dev::GcMaterial> materials{material(GC_MAT_PBR)};
+    materials[0].coat_texture = materials[0].sheen_color_texture = materials[0].specular_texture = 2;
+    materials[0].coat_roughness_texture = materials[0].specular_color_texture = materials[0].sheen_roughness_texture = GC_INVALID;
+    EXPECT_FALSE(kernel_features(materials, 0, false).textures);
+    for (std::uint32_t flag : {GC_MATF_CLEARCOAT, GC_MATF_SPECULAR, GC_MATF_SHEEN}) {
+        materials[0].flags = flag;
+        const KernelFeatures f = kernel_features(materials, 0, false);
+        EXPECT_TRUE(f.textures) << flag;
+        EXPECT_EQ(f.clearcoat, flag == GC_MATF_CLEARCOAT);
+        EXPECT_EQ(f.specular, flag == GC_MATF_SPECULAR);
+        EXPECT_EQ(f.sheen, flag == GC_MATF_SHEEN);
+    }
+}
+
 TEST(KernelFeatures, AllBuildsTheFullProgram)
 {
     const std::vector<dev::GcMaterial> materials{material(GC_MAT_LAMBERT)};

@@ -879,6 +879,20 @@ TEST(GltfMaterialLayers, MalformedValuesAreRefused)
     }
 }
 
+TEST(GltfMaterialLayers, SpecularAndCoatSpheres)
+{
+    // tests/data/scenes/material-layers: plain, tinted specular, specular off, two coats.
+    const Scene s = load_scene(test::test_data_scene("material-layers/MaterialLayers.gltf"));
+    ASSERT_EQ(s.materials.size(), 5u);
+    EXPECT_EQ(s.materials[0].layers, PbrLayers{});
+    EXPECT_TRUE(s.materials[1].layers.specular_on && !s.materials[1].layers.clearcoat_on);
+    EXPECT_EQ(s.materials[1].layers.specular_color, glm::vec3(1.0f, 0.2f, 0.2f));
+    EXPECT_EQ(s.materials[2].layers.specular, 0.0f);
+    EXPECT_TRUE(s.materials[3].layers.clearcoat_on && !s.materials[3].layers.specular_on);
+    EXPECT_EQ(s.materials[4].layers.clearcoat, 0.5f);
+    EXPECT_NEAR(s.materials[4].layers.clearcoat_roughness, 0.4f, 1e-7f);
+}
+
 TEST(GltfMaterialLayers, ClearCoatSampleModel)
 {
     // Khronos ClearCoatTest (tests/data/scenes/ClearCoatTest): the middle column's materials are
