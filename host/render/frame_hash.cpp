@@ -74,6 +74,21 @@ std::uint64_t scene_content_hash(const Scene& scene)
             add_value(h, t->scale.x);
             add_value(h, t->scale.y);
         }
+        // Only materials with a KHR_materials_* layer hash one, so other scenes keep their hash.
+        const PbrLayers& l = m.layers;
+        if (l != PbrLayers{}) {
+            h.add_field("layers");
+            for (float v : {l.clearcoat, l.clearcoat_roughness, l.specular, l.specular_color.x, l.specular_color.y,
+                            l.specular_color.z, l.sheen_color.x, l.sheen_color.y, l.sheen_color.z, l.sheen_roughness})
+                add_value(h, v);
+            for (bool on : {l.clearcoat_on, l.specular_on, l.sheen_on}) add_value(h, std::uint8_t(on));
+            for (const TextureRef* r : {&l.clearcoat_texture, &l.clearcoat_roughness_texture, &l.specular_texture,
+                                        &l.specular_color_texture, &l.sheen_color_texture, &l.sheen_roughness_texture}) {
+                add_value(h, r->texture);
+                for (float v : {r->uv.offset.x, r->uv.offset.y, r->uv.rotation, r->uv.scale.x, r->uv.scale.y})
+                    add_value(h, v);
+            }
+        }
     }
     add_value(h, std::uint64_t(scene.textures.size()));
     for (const Texture& t : scene.textures) {

@@ -5,10 +5,17 @@
 namespace gc {
 namespace {
 
+// A layer's textures count only when its flag is set: the kernels never read them otherwise.
 bool has_texture(const dev::GcMaterial& m)
 {
+    const bool coat = (m.flags & GC_MATF_CLEARCOAT) != 0u &&
+                      (m.coat_texture != GC_INVALID || m.coat_roughness_texture != GC_INVALID);
+    const bool specular = (m.flags & GC_MATF_SPECULAR) != 0u &&
+                          (m.specular_texture != GC_INVALID || m.specular_color_texture != GC_INVALID);
+    const bool sheen = (m.flags & GC_MATF_SHEEN) != 0u &&
+                       (m.sheen_color_texture != GC_INVALID || m.sheen_roughness_texture != GC_INVALID);
     return m.albedo_texture != GC_INVALID || m.metallic_roughness_texture != GC_INVALID ||
-           m.normal_texture != GC_INVALID || m.emission_texture != GC_INVALID;
+           m.normal_texture != GC_INVALID || m.emission_texture != GC_INVALID || coat || specular || sheen;
 }
 
 // Appends "-D name=value", space-separated from what is there.
@@ -26,6 +33,7 @@ KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::
     if (set == KernelFeatureSet::All) return {};
     KernelFeatures f;
     f.textures = f.normal_maps = f.alpha_mask = f.alpha_blend = false;
+    f.clearcoat = f.specular = f.sheen = false;
     f.material_types = 0u;
     for (const dev::GcMaterial& m : materials) {
         f.textures = f.textures || has_texture(m);
@@ -34,6 +42,9 @@ KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::
         // material above its cutoff is solid and not flagged, but keeping the test is harmless.
         f.alpha_mask = f.alpha_mask || (m.flags & GC_MATF_ALPHA_MASK) != 0u;
         f.alpha_blend = f.alpha_blend || (m.flags & GC_MATF_ALPHA_BLEND) != 0u;
+        f.clearcoat = f.clearcoat || (m.flags & GC_MATF_CLEARCOAT) != 0u;
+        f.specular = f.specular || (m.flags & GC_MATF_SPECULAR) != 0u;
+        f.sheen = f.sheen || (m.flags & GC_MATF_SHEEN) != 0u;
         // A type beyond the mask's bits keeps every type (the kernels treat unknown types as Lambert).
         f.material_types |= m.type < 32u ? (1u << m.type) : 0xffffffffu;
     }
@@ -49,6 +60,8 @@ std::string program_options(const KernelFeatures& features)
         {"GC_USE_TEXTURES", features.textures},         {"GC_USE_NORMAL_MAPS", features.normal_maps},
         {"GC_USE_ALPHA_MASK", features.alpha_mask},     {"GC_USE_ALPHA_BLEND", features.alpha_blend},
         {"GC_USE_POINT_LIGHTS", features.point_lights}, {"GC_USE_ENV_MAP", features.env_map},
+        {"GC_USE_CLEARCOAT", features.clearcoat},       {"GC_USE_SPECULAR", features.specular},
+        {"GC_USE_SHEEN", features.sheen},
     };
     for (const auto& [name, on] : switches)
         if (!on) add_define(options, name, "0");

@@ -1,6 +1,7 @@
 // The scene features an OpenCL program is built for (kernels/shared/gc_features.h): each
 // program is compiled without the code for features its scene lacks — textures, normal maps,
-// alpha MASK and BLEND, point lights, an environment map, and each material type — which
+// alpha MASK and BLEND, point lights, an environment map, each material type and each glTF
+// material layer (clearcoat, specular, sheen) — which
 // leaves every image bit unchanged and makes PoCL's cold build and the CPU path loop cheaper.
 //
 //     const KernelFeatures features = kernel_features(materials, point_lights, has_env_map);
@@ -26,6 +27,9 @@ struct KernelFeatures {
     bool alpha_blend = true;
     bool point_lights = true;
     bool env_map = true;
+    bool clearcoat = true;  // the KHR_materials_* layers of GC_MAT_PBR (GC_MATF_CLEARCOAT, ...)
+    bool specular = true;
+    bool sheen = true;
     std::uint32_t material_types = 0xffffffffu;  // bit t: some material has type t (GC_MAT_*)
 
     bool operator==(const KernelFeatures&) const = default;

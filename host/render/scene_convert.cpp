@@ -173,15 +173,29 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         d.emission = v4(m.emission, m.ior);
         d.pbr = {m.metallic, m.roughness, m.alpha_cutoff, m.transmission};
         d.type = material_type(m.type);
-        const std::array<std::uint32_t, 4>& slots = views.material_slots[out.size()];
-        d.albedo_texture = slots[0];
-        d.metallic_roughness_texture = slots[1];
-        d.normal_texture = slots[2];
+        const std::array<std::uint32_t, kMaterialSlots>& slots = views.material_slots[out.size()];
+        d.albedo_texture = slots[kSlotAlbedo];
+        d.metallic_roughness_texture = slots[kSlotMetallicRoughness];
+        d.normal_texture = slots[kSlotNormal];
         d.normal_scale = m.normal_scale;
-        d.emission_texture = slots[3];
+        d.emission_texture = slots[kSlotEmission];
         d.flags = (m.double_sided ? GC_MATF_TWO_SIDED : 0u) |
                   (m.alpha_mode == AlphaMode::Mask ? GC_MATF_ALPHA_MASK : 0u) |
                   (m.alpha_mode == AlphaMode::Blend ? GC_MATF_ALPHA_BLEND : 0u);
+        // The KHR_materials_* layers (the layer flags are set for PBR materials only).
+        const PbrLayers& l = m.layers;
+        const bool pbr = m.type == MaterialType::Pbr;
+        d.flags |= (pbr && l.clearcoat_on ? GC_MATF_CLEARCOAT : 0u) | (pbr && l.specular_on ? GC_MATF_SPECULAR : 0u) |
+                   (pbr && l.sheen_on ? GC_MATF_SHEEN : 0u);
+        if (pbr && l.specular_on) d.specular = v4(l.specular_color, d.specular.w);
+        d.coat = {l.clearcoat, l.clearcoat_roughness, 0.0f, l.specular};
+        d.sheen = v4(l.sheen_color, l.sheen_roughness);
+        d.coat_texture = slots[kSlotClearcoat];
+        d.coat_roughness_texture = slots[kSlotClearcoatRoughness];
+        d.specular_texture = slots[kSlotSpecular];
+        d.specular_color_texture = slots[kSlotSpecularColor];
+        d.sheen_color_texture = slots[kSlotSheenColor];
+        d.sheen_roughness_texture = slots[kSlotSheenRoughness];
         out.push_back(d);
     }
     return out;
@@ -243,10 +257,16 @@ TextureViews texture_views(const Scene& scene)
         return it->second;
     };
     out.material_slots.reserve(scene.materials.size());
-    for (const Material& m : scene.materials)
+    for (const Material& m : scene.materials) {
+        const PbrLayers& l = m.layers;
+        auto ref = [&](const TextureRef& r) { return view(r.texture, r.uv); };
         out.material_slots.push_back({view(m.albedo_texture, m.albedo_uv),
                                       view(m.metallic_roughness_texture, m.metallic_roughness_uv),
-                                      view(m.normal_texture, m.normal_uv), view(m.emission_texture, m.emission_uv)});
+                                      view(m.normal_texture, m.normal_uv), view(m.emission_texture, m.emission_uv),
+                                      ref(l.clearcoat_texture), ref(l.clearcoat_roughness_texture),
+                                      ref(l.specular_texture), ref(l.specular_color_texture),
+                                      ref(l.sheen_color_texture), ref(l.sheen_roughness_texture)});
+    }
     return out;
 }
 

@@ -22,12 +22,17 @@ struct DeviceTextures {
 // The device's texture views. View i < scene.textures.size() is scene texture i untransformed
 // (so a scene without uv transforms uploads what it always did); after them, one view per
 // distinct (texture, non-identity transform) pair that a material slot reads, in order of
-// first use, sharing its texture's texels. Materials index views (slots: albedo,
-// metallic-roughness, normal, emission; GC_INVALID = no texture). make_materials and
-// make_textures both read this one table, so their indices agree.
+// first use, sharing its texture's texels. Materials index views (one per MaterialSlot;
+// GC_INVALID = no texture). make_materials and make_textures both read this one table, so
+// their indices agree.
+enum MaterialSlot : std::size_t {
+    kSlotAlbedo, kSlotMetallicRoughness, kSlotNormal, kSlotEmission,
+    kSlotClearcoat, kSlotClearcoatRoughness, kSlotSpecular, kSlotSpecularColor, kSlotSheenColor, kSlotSheenRoughness,
+    kMaterialSlots
+};
 struct TextureViews {
     std::vector<dev::GcTexture> views;
-    std::vector<std::array<std::uint32_t, 4>> material_slots;  // one per scene material
+    std::vector<std::array<std::uint32_t, kMaterialSlots>> material_slots;  // one per scene material
 };
 TextureViews texture_views(const Scene& scene);
 

@@ -15,15 +15,19 @@ namespace gc {
 // The glTF extensions gltf_loader.cpp implements, and the only place they are listed:
 //   KHR_lights_punctual               point lights (spot and directional lights are skipped,
 //                                     with a warning)
+//   KHR_materials_clearcoat           factor, roughness and their textures (gc_bsdf.h); the
+//                                     coat normal texture is ignored with a warning
 //   KHR_materials_emissive_strength   emissiveStrength
 //   KHR_materials_ior                 ior
+//   KHR_materials_specular            factor, colour and their textures
 //   KHR_materials_transmission        transmissionFactor
 //   KHR_mesh_quantization             integer POSITION/NORMAL/TANGENT/TEXCOORD accessors
 //                                     (gltf_accessor.cpp)
 //   KHR_texture_transform             offset, rotation, scale, texCoord on every texture slot
-inline constexpr std::array<std::string_view, 6> k_supported_gltf_extensions = {
-    "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_transmission", "KHR_mesh_quantization",           "KHR_texture_transform"};
+inline constexpr std::array<std::string_view, 8> k_supported_gltf_extensions = {
+    "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
+    "KHR_materials_ior",          "KHR_materials_specular",  "KHR_materials_transmission",
+    "KHR_mesh_quantization",      "KHR_texture_transform"};
 
 bool gltf_extension_supported(std::string_view name);
 

@@ -20,6 +20,7 @@
 #include "host/scene/glb_check.h"
 #include "host/scene/gltf_files.h"
 #include "host/scene/gltf_images.h"
+#include "host/scene/gltf_material_layers.h"
 #include "host/scene/scene_file.h"
 #include "host/scene/texture_io.h"
 #include "host/scene/triangle_sink.h"
@@ -425,7 +426,31 @@ private:
             if (!gltf_extension_supported(ext) && !declared_as_used(ext))
                 log_warning(m_name + ": " + where + ": extension " + ext + " is not supported; ignored");
         out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, where);
+        read_layers(m, where, out.layers);
         return out;
+    }
+
+    // The KHR_materials_* layers of material m (gltf_material_layers.h).
+    void read_layers(const tinygltf::Material& m, const std::string& where, PbrLayers& layers)
+    {
+        const LayerTextureResolver resolve = [&](const tinygltf::Value& info, bool srgb, const std::string& slot) {
+            TextureRef r;
+            r.texture = texture(info.Get("index").GetNumberAsInt(), 0, srgb, where + ": " + slot);
+            tinygltf::ExtensionMap extensions;
+            if (info.Has("extensions") && info.Get("extensions").IsObject())
+                for (const std::string& key : info.Get("extensions").Keys()) extensions[key] = info.Get("extensions").Get(key);
+            r.uv = uv_transform(extensions, where + ": " + slot);
+            return r;
+        };
+        const std::string context = m_name + ": " + where;
+        if (const auto it = m.extensions.find("KHR_materials_clearcoat"); it != m.extensions.end()) {
+            read_clearcoat(it->second, context, resolve, layers);
+            if (it->second.Has("clearcoatNormalTexture"))
+                log_warning(context + ": KHR_materials_clearcoat clearcoatNormalTexture is ignored (the coat uses the "
+                                      "base's shading normal)");
+        }
+        if (const auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end())
+            read_specular(it->second, context, resolve, layers);
     }
 
     // A textureInfo's KHR_texture_transform (identity without one). The spec gives no

@@ -33,6 +33,34 @@ struct UvTransform {
     bool operator==(const UvTransform&) const = default;
 };
 
+// A texture slot of a KHR_materials_* extension: the scene texture and its uv transform.
+struct TextureRef {
+    int texture = -1;  // index into Scene::textures, -1 = none
+    UvTransform uv;
+    bool operator==(const TextureRef&) const = default;
+};
+
+// The KHR_materials_* layers over the metallic-roughness base (gc_bsdf.h gives the model).
+// Each is off unless its extension is on the material; the defaults are the extensions'.
+struct PbrLayers {
+    bool clearcoat_on = false;       // KHR_materials_clearcoat
+    float clearcoat = 0.0f;          // clearcoatFactor
+    float clearcoat_roughness = 0.0f;
+    TextureRef clearcoat_texture;    // R: factor
+    TextureRef clearcoat_roughness_texture; // G: roughness
+    bool specular_on = false;        // KHR_materials_specular
+    float specular = 1.0f;           // specularFactor
+    glm::vec3 specular_color{1.0f};  // specularColorFactor (linear)
+    TextureRef specular_texture;     // A: factor
+    TextureRef specular_color_texture; // sRGB rgb: colour
+    bool sheen_on = false;           // KHR_materials_sheen
+    glm::vec3 sheen_color{0.0f};
+    float sheen_roughness = 0.0f;
+    TextureRef sheen_color_texture;  // sRGB rgb
+    TextureRef sheen_roughness_texture; // A
+    bool operator==(const PbrLayers&) const = default;
+};
+
 struct Material {
     std::string name = "default";
     MaterialType type = MaterialType::Lambert;
@@ -59,6 +87,7 @@ struct Material {
     UvTransform metallic_roughness_uv;
     UvTransform normal_uv;
     UvTransform emission_uv;
+    PbrLayers layers;            // glTF KHR_materials_* (Pbr only)
 
     bool is_emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };

@@ -180,6 +180,18 @@ GC_FUNC float gc_phong_pdf_upper(float p_spec, float exponent, float3 wo, float3
  * alpha is clamped to GC_PBR_MIN_ALPHA so that roughness 0 stays a (very sharp) non-delta
  * lobe that next-event estimation and MIS still handle.
  *
+ * KHR_materials_specular (GC_MATF_SPECULAR) replaces the dielectric's F_d by the spec's
+ * colour-weighted fresnel_mix: F_s = min(F0 specularColor, 1) + (1 - min(...)) (1 - |wo.h|)^5
+ * per channel, the specular lobe weighted by specular * F_s and the base by
+ * 1 - specular * max(F_s). Without the extension the three channels are F_d.
+ *
+ * KHR_materials_clearcoat (GC_MATF_CLEARCOAT) puts a GGX coat (ior 1.5, alpha =
+ * clearcoatRoughness^2) over all of the above, as the spec's fresnel_coat:
+ *   f_coated = f * (1 - c F_c) + c F_c D_c G2_c / (4 |n.wo| |n.wi|),  F_c = 0.04 + 0.96 (1 - |n.wo|)^5
+ * with c the clearcoat factor. F_c is taken at wo alone, so a coated f is not reciprocal (the
+ * spec's choice). The coat shares the base's shading normal: clearcoatNormalTexture is not
+ * modelled (the loader warns).
+ *
  * KHR_materials_transmission (without KHR_materials_volume the surface is thin-walled: no
  * refraction) is a DELTA lobe straight through the surface (wi = -wo), weight
  * (1 - metallic) * transmission * (1 - F_d(|wo.z|)) * base, i.e. the smooth limit of the
@@ -269,48 +281,112 @@ GC_FUNC float gc_ggx_reflection_pdf(float3 wo, float3 wi, float alpha)
     return gc_ggx_g1(wo, alpha) * gc_ggx_d(wm, alpha) / (4.0f * wo.z);
 }
 
-/* Probabilities (specular, diffuse, transmission) of choosing each lobe for wo.z = cos_o.
- * Proportional to each lobe's weight with the Fresnel terms taken at cos_o (the half vector
- * is unknown before sampling): specular (1 - metallic) F_d + metallic lum(F_m), diffuse and
- * transmission (1 - metallic)(1 - F_d) lum(base), split by `transmission`. */
-GC_FUNC float3 gc_pbr_lobe_probs(GcMaterial m, float3 base, float cos_o)
+/* Whether m has the KHR_materials_* layer `flag` (GC_MATF_*); constant false where the program
+ * was built without the layer's feature (`used`, a GC_USE_* define), so its code drops out. */
+#define gc_pbr_has(m, used, flag) ((used) != 0 && ((m).flags & (flag)) != 0u)
+
+GC_FUNC float gc_max_component(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
+/* The dielectric's weighted Fresnel, per channel, at Schlick weight sw: F_d in all three
+ * channels, or specular * F_s with KHR_materials_specular (see above). */
+GC_FUNC float3 gc_pbr_dielectric_fresnel(GcMaterial m, float sw)
+{
+    const float f0 = gc_pbr_f0(m);
+    if (!gc_pbr_has(m, GC_USE_SPECULAR, GC_MATF_SPECULAR)) {
+        const float fd = f0 + (1.0f - f0) * sw;
+        return make_float3(fd, fd, fd);
+    }
+    const float3 one = make_float3(1.0f, 1.0f, 1.0f);
+    const float3 f0c = fmin(fmax(GC_XYZ(m.specular), make_float3(0.0f, 0.0f, 0.0f)) * f0, one);
+    return (f0c + (one - f0c) * sw) * clamp(m.coat.w, 0.0f, 1.0f);
+}
+
+/* Unnormalised weights (specular, diffuse, transmission) of the base lobes for wo.z = cos_o,
+ * with the Fresnel terms taken at cos_o (the half vector is unknown before sampling):
+ * specular (1 - metallic) F_d + metallic lum(F_m), diffuse and transmission
+ * (1 - metallic)(1 - F_d) lum(base), split by `transmission` (F_d: the largest channel). */
+GC_FUNC float3 gc_pbr_lobe_weights(GcMaterial m, float3 base, float cos_o)
 {
     const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
-    const float f0 = gc_pbr_f0(m);
     const float sw = gc_schlick_weight(cos_o);
-    const float fd = f0 + (1.0f - f0) * sw;
+    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, sw));
     const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
     const float w_spec = (1.0f - metallic) * fd + metallic * fmax(gc_luminance(fm), 0.0f);
     const float w_base = (1.0f - metallic) * (1.0f - fd) * fmax(gc_luminance(base), 0.0f);
-    const float w_diff = w_base * (1.0f - trans);
-    const float w_trans = w_base * trans;
-    const float sum = w_spec + w_diff + w_trans;
+    return make_float3(w_spec, w_base * (1.0f - trans), w_base * trans);
+}
+
+/* Probabilities (specular, diffuse, transmission) of choosing each base lobe for wo.z = cos_o,
+ * proportional to gc_pbr_lobe_weights. */
+GC_FUNC float3 gc_pbr_lobe_probs(GcMaterial m, float3 base, float cos_o)
+{
+    const float3 w = gc_pbr_lobe_weights(m, base, cos_o);
+    const float sum = w.x + w.y + w.z;
     if (!(sum > 0.0f)) return make_float3(1.0f, 0.0f, 0.0f);
-    return make_float3(w_spec / sum, w_diff / sum, w_trans / sum);
+    return make_float3(w.x / sum, w.y / sum, w.z / sum);
+}
+
+/* ---- KHR_materials_clearcoat */
+
+GC_FUNC float gc_pbr_coat_alpha(GcMaterial m)
+{
+    const float r = clamp(m.coat.y, 0.0f, 1.0f);
+    return fmax(r * r, GC_PBR_MIN_ALPHA);
+}
+
+/* c F_c at cos_o = |n.wo|: the share of the coat in the mix (0 without a coat). */
+GC_FUNC float gc_pbr_coat_weight(GcMaterial m, float cos_o)
+{
+    if (!gc_pbr_has(m, GC_USE_CLEARCOAT, GC_MATF_CLEARCOAT)) return 0.0f;
+    return clamp(m.coat.x, 0.0f, 1.0f) * (0.04f + 0.96f * gc_schlick_weight(cos_o));
+}
+
+/* Probability of sampling the coat: its weight against the base lobes' weights scaled by
+ * what the coat lets through. */
+GC_FUNC float gc_pbr_coat_prob(GcMaterial m, float3 base, float cos_o)
+{
+    const float wc = gc_pbr_coat_weight(m, cos_o);
+    if (!(wc > 0.0f)) return 0.0f;
+    const float3 w = gc_pbr_lobe_weights(m, base, cos_o);
+    return wc / (wc + (1.0f - wc) * (w.x + w.y + w.z));
+}
+
+/* Non-delta part of the base (everything below the coat) for wo, wi in the upper hemisphere. */
+GC_FUNC float3 gc_pbr_base_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
+{
+    const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
+    const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
+    const float alpha = gc_pbr_alpha(m);
+    const float3 wm = gc_normalize(wo + wi);
+    const float sw = gc_schlick_weight(gc_dot(wo, wm));
+    const float3 fd = gc_pbr_dielectric_fresnel(m, sw);
+    const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
+    const float3 fresnel = fd * (1.0f - metallic) + fm * metallic;
+    const float spec = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z);
+    const float3 diffuse = base * ((1.0f - metallic) * (1.0f - trans) * (1.0f - gc_max_component(fd)) * GC_INV_PI);
+    return diffuse + fresnel * spec;
 }
 
 /* Non-delta part of f for wo, wi both in the upper hemisphere. */
 GC_FUNC float3 gc_pbr_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
 {
-    const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
-    const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
-    const float alpha = gc_pbr_alpha(m);
-    const float f0 = gc_pbr_f0(m);
+    const float3 f = gc_pbr_base_eval_upper(m, base, wo, wi);
+    const float wc = gc_pbr_coat_weight(m, wo.z);
+    if (!(wc > 0.0f)) return f;
+    const float alpha = gc_pbr_coat_alpha(m);
     const float3 wm = gc_normalize(wo + wi);
-    const float sw = gc_schlick_weight(gc_dot(wo, wm));
-    const float fd = f0 + (1.0f - f0) * sw;
-    const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
-    const float3 fresnel = make_float3(fd, fd, fd) * (1.0f - metallic) + fm * metallic;
-    const float spec = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z);
-    const float3 diffuse = base * ((1.0f - metallic) * (1.0f - trans) * (1.0f - fd) * GC_INV_PI);
-    return diffuse + fresnel * spec;
+    const float coat = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z);
+    return f * (1.0f - wc) + make_float3(coat, coat, coat) * wc;
 }
 
 GC_FUNC float gc_pbr_pdf_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
 {
     const float3 p = gc_pbr_lobe_probs(m, base, wo.z);
-    return p.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_alpha(m)) + p.y * gc_cosine_hemisphere_pdf(wi.z);
+    const float pdf = p.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_alpha(m)) + p.y * gc_cosine_hemisphere_pdf(wi.z);
+    const float pc = gc_pbr_coat_prob(m, base, wo.z);
+    if (!(pc > 0.0f)) return pdf;
+    return pc * gc_ggx_reflection_pdf(wo, wi, gc_pbr_coat_alpha(m)) + (1.0f - pc) * pdf;
 }
 
 /* ------------------------------------------------------------------ public API */
@@ -402,16 +478,17 @@ GC_FUNC GcBsdfSample gc_dielectric_sample(GcMaterial m, float3 wo, float u0)
 }
 
 /* The thin-walled transmission lobe of GC_MAT_PBR, chosen with probability p_trans: a delta
- * straight through the surface (see the PBR section). */
+ * straight through the surface (see the PBR section), dimmed by a coat's weight. */
 GC_FUNC GcBsdfSample gc_pbr_sample_transmission(GcMaterial m, float3 base, float3 wo, float p_trans)
 {
     const float cos_o = fabs(wo.z);
     if (!(cos_o > 0.0f)) return gc_bsdf_no_sample();
     const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
-    const float f0 = gc_pbr_f0(m);
-    const float fd = f0 + (1.0f - f0) * gc_schlick_weight(cos_o);
-    const float3 t = base * ((1.0f - metallic) * trans * (1.0f - fd));
+    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(cos_o)));
+    float3 t = base * ((1.0f - metallic) * trans * (1.0f - fd));
+    const float wc = gc_pbr_coat_weight(m, cos_o);
+    if (wc > 0.0f) t = t * (1.0f - wc);
     GcBsdfSample s;
     s.wi = -wo;
     s.f = t * (1.0f / cos_o);
@@ -455,15 +532,20 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
             wi_up = gc_sample_cosine_hemisphere(u1, u2);
         }
     } else if (gc_material_is(m, GC_MAT_PBR)) {
+        /* The coat first (with probability pc), else u0 is rescaled to pick a base lobe. */
+        const float pc = gc_pbr_coat_prob(m, albedo, wo_up.z);
+        const bool coat = pc > 0.0f && u0 < pc;
+        if (pc > 0.0f && !coat) u0 = fmin((u0 - pc) / (1.0f - pc), 0.99999994f);
         const float3 p = gc_pbr_lobe_probs(m, albedo, wo_up.z);
-        if (u0 < p.x) {
-            const float3 wm = gc_ggx_sample_visible_normal(wo_up, gc_pbr_alpha(m), u1, u2);
+        if (coat || u0 < p.x) {
+            const float alpha = coat ? gc_pbr_coat_alpha(m) : gc_pbr_alpha(m);
+            const float3 wm = gc_ggx_sample_visible_normal(wo_up, alpha, u1, u2);
             wi_up = wm * (2.0f * gc_dot(wo_up, wm)) - wo_up;
             /* Reflections off visible facets can still leave below the horizon: the sample
              * fails, and gc_bsdf_pdf is zero there, so the density stays consistent. */
             if (!(wi_up.z > 0.0f)) return gc_bsdf_no_sample();
         } else if (p.z > 0.0f && u0 >= p.x + p.y) {
-            return gc_pbr_sample_transmission(m, albedo, wo, p.z);
+            return gc_pbr_sample_transmission(m, albedo, wo, (1.0f - pc) * p.z);
         } else {
             wi_up = gc_sample_cosine_hemisphere(u1, u2);
         }

@@ -34,6 +34,15 @@
 #ifndef GC_USE_ENV_MAP
 #define GC_USE_ENV_MAP 1 /* an environment map (a constant environment needs no code) */
 #endif
+#ifndef GC_USE_CLEARCOAT
+#define GC_USE_CLEARCOAT 1 /* any PBR material has GC_MATF_CLEARCOAT (KHR_materials_clearcoat) */
+#endif
+#ifndef GC_USE_SPECULAR
+#define GC_USE_SPECULAR 1 /* any PBR material has GC_MATF_SPECULAR (KHR_materials_specular) */
+#endif
+#ifndef GC_USE_SHEEN
+#define GC_USE_SHEEN 1 /* any PBR material has GC_MATF_SHEEN (KHR_materials_sheen) */
+#endif
 #ifndef GC_USE_MATERIALS
 #define GC_USE_MATERIALS 0xffffffffu /* bit t: some material has GcMaterial.type t */
 #endif

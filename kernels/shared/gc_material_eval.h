@@ -1,6 +1,6 @@
 /*
  * gc_material_eval.h — a material evaluated at a surface point: glTF base colour and alpha,
- * metallicRoughness, normal and emissive textures looked up at the hit's uv and folded into
+ * metallicRoughness, normal, emissive and KHR_materials_* layer textures looked up at the hit's uv and folded into
  * plain numbers, so that gc_bsdf.h (which knows no textures) sees a GcMaterial and an albedo;
  * and glTF alpha BLEND as a stochastic pass-through decision (gc_alpha_transparent, applied
  * in gc_shade_vertex). alpha MASK never reaches this code: the traversal drops cut-away hits
@@ -65,6 +65,29 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
         const float4 mr = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.metallic_roughness_texture), uv.x, uv.y);
         m.pbr.x *= mr.z;
         m.pbr.y *= mr.y;
+    }
+    /* The KHR_materials_* layers' textures (channels as their specifications give them). */
+    if (GC_USE_TEXTURES != 0 && GC_USE_CLEARCOAT != 0 && (m.flags & GC_MATF_CLEARCOAT) != 0u) {
+        if (m.coat_texture != GC_INVALID)
+            m.coat.x *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.coat_texture), uv.x, uv.y).x;
+        if (m.coat_roughness_texture != GC_INVALID)
+            m.coat.y *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.coat_roughness_texture), uv.x, uv.y).y;
+    }
+    if (GC_USE_TEXTURES != 0 && GC_USE_SPECULAR != 0 && (m.flags & GC_MATF_SPECULAR) != 0u) {
+        if (m.specular_texture != GC_INVALID)
+            m.coat.w *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.specular_texture), uv.x, uv.y).w;
+        if (m.specular_color_texture != GC_INVALID) {
+            const float4 c = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.specular_color_texture), uv.x, uv.y);
+            m.specular = make_float4(m.specular.x * c.x, m.specular.y * c.y, m.specular.z * c.z, m.specular.w);
+        }
+    }
+    if (GC_USE_TEXTURES != 0 && GC_USE_SHEEN != 0 && (m.flags & GC_MATF_SHEEN) != 0u) {
+        if (m.sheen_color_texture != GC_INVALID) {
+            const float4 c = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.sheen_color_texture), uv.x, uv.y);
+            m.sheen = make_float4(m.sheen.x * c.x, m.sheen.y * c.y, m.sheen.z * c.z, m.sheen.w);
+        }
+        if (m.sheen_roughness_texture != GC_INVALID)
+            m.sheen.w *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.sheen_roughness_texture), uv.x, uv.y).w;
     }
     return m;
 }

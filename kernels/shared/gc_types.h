@@ -154,10 +154,15 @@ GC_STRUCT(GcTriangleAttribs) {
 #define GC_MATF_TWO_SIDED 1u   /* emission on both faces (glTF doubleSided) */
 #define GC_MATF_ALPHA_MASK 2u
 #define GC_MATF_ALPHA_BLEND 4u
+/* GC_MAT_PBR layers from the KHR_materials_* extensions (gc_bsdf.h); a material without the
+ * flag never reads the layer's fields, so its result is that of the plain glTF model. */
+#define GC_MATF_CLEARCOAT 8u  /* KHR_materials_clearcoat: coat, coat_texture, coat_roughness_texture */
+#define GC_MATF_SPECULAR 16u  /* KHR_materials_specular: specular.rgb colour, coat.w factor */
+#define GC_MATF_SHEEN 32u     /* KHR_materials_sheen: sheen, sheen_*_texture */
 
 GC_STRUCT(GcMaterial) {
     float4 albedo;   /* rgb: diffuse reflectance / base color (linear); a: opacity */
-    float4 specular; /* rgb: specular or mirror reflectance; a: Phong exponent */
+    float4 specular; /* rgb: specular or mirror reflectance, or (PBR) KHR_materials_specular colour; a: Phong exponent */
     float4 emission; /* rgb: emitted radiance; a: index of refraction */
     float4 pbr;      /* x: metallic; y: roughness; z: alpha cutoff; w: transmission */
     uint type;       /* GC_MAT_* */
@@ -167,7 +172,17 @@ GC_STRUCT(GcMaterial) {
     uint emission_texture;
     uint flags; /* GC_MATF_* */
     float normal_scale; /* glTF normalTexture.scale: multiplies the normal map's tangent-space xy */
+    uint coat_texture;  /* clearcoatTexture (R: factor) */
+    float4 coat;        /* x: clearcoat factor; y: clearcoat roughness; z: 0; w: KHR_materials_specular factor */
+    float4 sheen;       /* rgb: sheen colour (linear); w: sheen roughness */
+    uint coat_roughness_texture; /* clearcoatRoughnessTexture (G: roughness) */
+    uint specular_texture;       /* specularTexture (A: factor) */
+    uint specular_color_texture; /* specularColorTexture (sRGB rgb: colour) */
+    uint sheen_color_texture;    /* sheenColorTexture (sRGB rgb: colour) */
+    uint sheen_roughness_texture; /* sheenRoughnessTexture (A: roughness) */
+    uint pad0;
     uint pad1;
+    uint pad2;
 } GC_STRUCT_END(GcMaterial)
 
 #define GC_TEXF_SRGB 1u          /* texels are sRGB-encoded colour */
@@ -353,8 +368,10 @@ static_assert(sizeof(GcTriangle4) == 176 && offsetof(GcTriangle4, prim) == 144);
 static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng) == 48 &&
               offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&
               offsetof(GcTriangleAttribs, flags) == 92 && offsetof(GcTriangleAttribs, tangent) == 96);
-static_assert(sizeof(GcMaterial) == 96 && offsetof(GcMaterial, type) == 64 &&
-              offsetof(GcMaterial, emission_texture) == 80);
+static_assert(sizeof(GcMaterial) == 160 && offsetof(GcMaterial, type) == 64 &&
+              offsetof(GcMaterial, emission_texture) == 80 && offsetof(GcMaterial, coat) == 96 &&
+              offsetof(GcMaterial, sheen) == 112 && offsetof(GcMaterial, coat_roughness_texture) == 128 &&
+              offsetof(GcMaterial, sheen_roughness_texture) == 144);
 static_assert(sizeof(GcTexture) == 48 && offsetof(GcTexture, uv_u) == 16 && offsetof(GcTexture, uv_v) == 32);
 static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);

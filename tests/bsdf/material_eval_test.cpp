@@ -201,5 +201,38 @@ TEST(MaterialEval, MetallicRoughnessAndEmissionTextures)
     EXPECT_NEAR(uv.y, 0.2f * 1.0f + 0.3f * 1.0f + 0.5f * -1.0f, 1e-6f);
 }
 
+TEST(MaterialEval, LayerTexturesFoldIntoTheirFactorsOnlyWithTheirFlag)
+{
+    // KHR_materials_clearcoat: clearcoatTexture R scales the factor, clearcoatRoughnessTexture
+    // G the roughness; KHR_materials_specular: specularTexture A the factor, the sRGB
+    // specularColorTexture the colour. A layer without its flag is left as it is.
+    OneTriangle s;
+    GcMaterial& m0 = s.materials[0];
+    m0.type = GC_MAT_PBR;
+    m0.coat = make_float4(0.8f, 0.5f, 0.0f, 0.6f);
+    m0.specular = make_float4(1.0f, 0.5f, 0.25f, 1.0f);
+    m0.coat_texture = s.add_texture(rgba(51, 0, 0), false);
+    m0.coat_roughness_texture = s.add_texture(rgba(0, 102, 0), false);
+    m0.specular_texture = s.add_texture(rgba(0, 0, 0, 153), false);
+    m0.specular_color_texture = s.add_texture(rgba(188, 255, 0), true);
+    m0.sheen_color_texture = m0.sheen_roughness_texture = GC_INVALID;
+    auto shade = [&](const GcMaterial& m) {
+        return gc_shade_material(nullptr, s.materials.data(), s.textures.data(), s.texel_data.data(), nullptr, nullptr,
+                                 nullptr, nullptr, nullptr, m, make_float2(0.5f, 0.5f));
+    };
+    const GcMaterial off = shade(m0);
+    EXPECT_EQ(off.coat.x, 0.8f);
+    EXPECT_EQ(off.coat.w, 0.6f);
+    EXPECT_EQ(off.specular.x, 1.0f);
+    m0.flags = GC_MATF_CLEARCOAT | GC_MATF_SPECULAR;
+    const GcMaterial on = shade(m0);
+    EXPECT_NEAR(on.coat.x, 0.8f * 51.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(on.coat.y, 0.5f * 102.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(on.coat.w, 0.6f * 153.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(on.specular.x, gc_srgb_to_linear_table[188], 1e-6f);
+    EXPECT_NEAR(on.specular.y, 0.5f, 1e-6f);
+    EXPECT_EQ(on.specular.z, 0.0f);
+}
+
 }  // namespace
 }  // namespace gc::dev

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gc_bsdf.h"
+#include "tests/bsdf/bsdf_albedo.h"
 #include "tests/bsdf/chi2.h"
 
 namespace gc::dev {
@@ -19,6 +20,11 @@ namespace {
 
 using test::kPi;
 using test::Uniform;
+using test_albedo::Albedo;
+using test_albedo::albedo_by_quadrature;
+using test_albedo::base_of;
+using test_albedo::directional_albedo;
+using test_albedo::draw;
 
 GcMaterial pbr(float3 base, float metallic, float roughness, float transmission = 0.0f, float ior = 1.5f)
 {
@@ -36,7 +42,6 @@ GcMaterial pbr(float3 base, float metallic, float roughness, float transmission 
 
 float3 grey(float v) { return make_float3(v, v, v); }
 float3 dir_deg(float theta_deg, float phi = 0.7f) { return test::spherical(theta_deg * kPi / 180.0, phi); }
-float3 base_of(const GcMaterial& m) { return GC_XYZ(m.albedo); }
 
 struct Case {
     std::string name;
@@ -62,14 +67,6 @@ std::vector<Case> pbr_cases()
 double delta_probability(const GcMaterial& m, float3 wo)
 {
     return gc_pbr_lobe_probs(m, base_of(m), std::fabs(wo.z)).z;
-}
-
-GcBsdfSample draw(const GcMaterial& m, float3 wo, Uniform& u)
-{
-    const float u0 = u.next();
-    const float u1 = u.next();
-    const float u2 = u.next();
-    return gc_bsdf_sample(m, base_of(m), wo, u0, u1, u2);
 }
 
 TEST(Pbr, GgxIsNormalisedOverProjectedArea)
@@ -189,41 +186,6 @@ TEST(Pbr, TwoSidedNoRoughTransmission)
             }
         }
     }
-}
-
-// Directional albedo (all lobes, delta included) as the mean sample weight, per channel.
-struct Albedo {
-    float3 mean;
-    double stderr_; // of the luminance
-};
-
-Albedo directional_albedo(const GcMaterial& m, float3 wo, int n, std::uint32_t seed)
-{
-    Uniform u(seed);
-    double sum[3] = {0, 0, 0};
-    double lum = 0.0;
-    double lum2 = 0.0;
-    for (int k = 0; k < n; ++k) {
-        const GcBsdfSample s = draw(m, wo, u);
-        if (s.flags == 0u) continue;
-        for (int c = 0; c < 3; ++c) sum[c] += s.weight[c];
-        const double l = gc_luminance(s.weight);
-        lum += l;
-        lum2 += l * l;
-    }
-    const double mean = lum / n;
-    return {make_float3(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n), static_cast<float>(sum[2] / n)),
-            std::sqrt(std::max(0.0, lum2 / n - mean * mean) / n)};
-}
-
-// The same by quadrature of f |cos| (independent of the sampler; non-delta part only).
-double albedo_by_quadrature(const GcMaterial& m, float3 wo)
-{
-    return test::integrate_sphere(
-        [&](glm::vec3 wi) {
-            return static_cast<double>(gc_luminance(gc_bsdf_eval(m, base_of(m), wo, wi))) * std::fabs(wi.z);
-        },
-        2048, 512);
 }
 
 TEST(Pbr, WhiteFurnace)

@@ -30,7 +30,8 @@ TEST(KernelFeatures, LambertOnlySceneTurnsEverythingElseOff)
     EXPECT_FALSE(f.textures || f.normal_maps || f.alpha_mask || f.alpha_blend || f.point_lights || f.env_map);
     EXPECT_EQ(f.material_types, 1u << GC_MAT_LAMBERT);
     EXPECT_EQ(options, "-D GC_USE_TEXTURES=0 -D GC_USE_NORMAL_MAPS=0 -D GC_USE_ALPHA_MASK=0 -D GC_USE_ALPHA_BLEND=0 "
-                       "-D GC_USE_POINT_LIGHTS=0 -D GC_USE_ENV_MAP=0 -D GC_USE_MATERIALS=" +
+                       "-D GC_USE_POINT_LIGHTS=0 -D GC_USE_ENV_MAP=0 -D GC_USE_CLEARCOAT=0 -D GC_USE_SPECULAR=0 "
+                       "-D GC_USE_SHEEN=0 -D GC_USE_MATERIALS=" +
                            std::to_string(1u << GC_MAT_LAMBERT) + "u");
 }
 
@@ -45,11 +46,29 @@ TEST(KernelFeatures, EachFeatureIsSeen)
 
     materials[1].normal_texture = 0;
     materials[2].flags = GC_MATF_ALPHA_MASK;
-    materials[0].flags = GC_MATF_ALPHA_BLEND | GC_MATF_TWO_SIDED;
+    materials[0].flags = GC_MATF_ALPHA_BLEND | GC_MATF_TWO_SIDED | GC_MATF_CLEARCOAT | GC_MATF_SPECULAR | GC_MATF_SHEEN;
     const KernelFeatures f = kernel_features(materials, 2, true);
     EXPECT_TRUE(f.textures && f.normal_maps && f.alpha_mask && f.alpha_blend && f.point_lights && f.env_map);
+    EXPECT_TRUE(f.clearcoat && f.specular && f.sheen);
     // Only the material types are left to specialise.
     EXPECT_EQ(program_options(f), "-D GC_USE_MATERIALS=" + std::to_string(f.material_types) + "u");
+}
+
+TEST(KernelFeatures, LayerTexturesCountOnlyWithTheirLayer)
+{
+    // The kernels read a KHR_materials_* layer's textures only when its flag is set.
+    std::vector<dev::GcMaterial> materials{material(GC_MAT_PBR)};
+    materials[0].coat_texture = materials[0].sheen_color_texture = materials[0].specular_texture = 2;
+    materials[0].coat_roughness_texture = materials[0].specular_color_texture = materials[0].sheen_roughness_texture = GC_INVALID;
+    EXPECT_FALSE(kernel_features(materials, 0, false).textures);
+    for (std::uint32_t flag : {GC_MATF_CLEARCOAT, GC_MATF_SPECULAR, GC_MATF_SHEEN}) {
+        materials[0].flags = flag;
+        const KernelFeatures f = kernel_features(materials, 0, false);
+        EXPECT_TRUE(f.textures) << flag;
+        EXPECT_EQ(f.clearcoat, flag == GC_MATF_CLEARCOAT);
+        EXPECT_EQ(f.specular, flag == GC_MATF_SPECULAR);
+        EXPECT_EQ(f.sheen, flag == GC_MATF_SHEEN);
+    }
 }
 
 TEST(KernelFeatures, AllBuildsTheFullProgram)

@@ -828,21 +828,109 @@ TEST(GltfConformance, EverySupportedExtensionMayBeRequired)
     EXPECT_EQ(err.find("extension"), std::string::npos) << err;
 }
 
+// KHR_materials_clearcoat and KHR_materials_specular: factors read into Material::layers,
+// defaults from the specifications, malformed values refused naming file, material and key.
+TEST(GltfMaterialLayers, FactorsAndDefaults)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+    doc.top = R"("materials": [{"name": "coated", "extensions": {
+                    "KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.25},
+                    "KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 2.0]}}},
+                 {"name": "defaults", "extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_specular": {}}},
+                 {"name": "plain"}],
+                 "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_specular"],)";
+    const Scene s = load_scene(write_gltf(dir, doc));
+    ASSERT_EQ(s.materials.size(), 3u);
+    const PbrLayers& a = s.materials[0].layers;
+    EXPECT_TRUE(a.clearcoat_on && a.specular_on && !a.sheen_on);
+    EXPECT_EQ(a.clearcoat, 0.75f);
+    EXPECT_EQ(a.clearcoat_roughness, 0.25f);
+    EXPECT_EQ(a.specular, 0.5f);
+    EXPECT_EQ(a.specular_color, glm::vec3(1.0f, 0.5f, 2.0f));
+    const PbrLayers& d = s.materials[1].layers;
+    EXPECT_TRUE(d.clearcoat_on && d.specular_on);
+    EXPECT_EQ(d.clearcoat, 0.0f);
+    EXPECT_EQ(d.clearcoat_roughness, 0.0f);
+    EXPECT_EQ(d.specular, 1.0f);
+    EXPECT_EQ(d.specular_color, glm::vec3(1.0f));
+    EXPECT_EQ(s.materials[2].layers, PbrLayers{});
+}
+
+TEST(GltfMaterialLayers, MalformedValuesAreRefused)
+{
+    ScratchDir dir;
+    const std::pair<const char*, const char*> cases[] = {
+        {R"("KHR_materials_clearcoat": {"clearcoatFactor": "one"})", "clearcoatFactor is not a number"},
+        {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": 1.5})", "clearcoatRoughnessFactor = 1.5"},
+        {R"("KHR_materials_clearcoat": {"clearcoatTexture": {"texCoord": 0}})", "clearcoatTexture has no non-negative integer index"},
+        {R"("KHR_materials_clearcoat": {"clearcoatTexture": {"index": 4}})", "texture 4 out of range"},
+        {R"("KHR_materials_specular": {"specularFactor": -0.1})", "specularFactor = -0.1"},
+        {R"("KHR_materials_specular": {"specularColorFactor": [1, 1]})", "specularColorFactor is not an array of three numbers"},
+        {R"("KHR_materials_specular": {"specularColorFactor": [1, -1, 1]})", "specularColorFactor holds a value"},
+    };
+    for (const auto& [ext, why] : cases) {
+        Doc doc;
+        doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+        doc.top = std::string(R"("materials": [{"name": "m", "extensions": {)") + ext + "}}],";
+        const std::string msg = expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "material 0 'm'", why});
+        std::printf("  %s\n", msg.c_str());
+    }
+}
+
+TEST(GltfMaterialLayers, SpecularAndCoatSpheres)
+{
+    // tests/data/scenes/material-layers: plain, tinted specular, specular off, two coats.
+    const Scene s = load_scene(test::test_data_scene("material-layers/MaterialLayers.gltf"));
+    ASSERT_EQ(s.materials.size(), 5u);
+    EXPECT_EQ(s.materials[0].layers, PbrLayers{});
+    EXPECT_TRUE(s.materials[1].layers.specular_on && !s.materials[1].layers.clearcoat_on);
+    EXPECT_EQ(s.materials[1].layers.specular_color, glm::vec3(1.0f, 0.2f, 0.2f));
+    EXPECT_EQ(s.materials[2].layers.specular, 0.0f);
+    EXPECT_TRUE(s.materials[3].layers.clearcoat_on && !s.materials[3].layers.specular_on);
+    EXPECT_EQ(s.materials[4].layers.clearcoat, 0.5f);
+    EXPECT_NEAR(s.materials[4].layers.clearcoat_roughness, 0.4f, 1e-7f);
+}
+
+TEST(GltfMaterialLayers, ClearCoatSampleModel)
+{
+    // Khronos ClearCoatTest (tests/data/scenes/ClearCoatTest): the middle column's materials are
+    // coated, the outer ones are not; the coat textures read R (factor) and G (roughness).
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(test::test_data_scene("ClearCoatTest/ClearCoatTest.gltf"));
+    const std::string err = testing::internal::GetCapturedStderr();
+    int coated = 0;
+    for (const Material& m : s.materials) {
+        const bool should = m.name.size() > 7 && m.name.substr(m.name.size() - 7) == "_Coated";
+        EXPECT_EQ(m.layers.clearcoat_on, should) << m.name;
+        coated += m.layers.clearcoat_on ? 1 : 0;
+        if (m.name == "Simple_Coated") {
+            EXPECT_EQ(m.layers.clearcoat, 1.0f);
+            EXPECT_NEAR(m.layers.clearcoat_roughness, 0.03f, 1e-7f);
+        }
+        if (m.name == "Partial_Coated") EXPECT_GE(m.layers.clearcoat_texture.texture, 0);
+        if (m.name == "RoughVariations_Coated") EXPECT_GE(m.layers.clearcoat_roughness_texture.texture, 0);
+    }
+    EXPECT_EQ(coated, 6);
+    EXPECT_NE(err.find("clearcoatNormalTexture is ignored"), std::string::npos) << err;
+}
+
 TEST(GltfConformance, UnsupportedUsedExtensionsGetOneWarning)
 {
     ScratchDir dir;
     Doc doc;
     doc.primitive_extra = R"(, "indices": 2, "material": 0)";
-    doc.top = R"("materials": [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1},
-                                               "KHR_materials_sheen": {}, "KHR_materials_ior": {"ior": 1.2}}}],
-                 "extensionsUsed": ["KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_ior"],)";
+    doc.top = R"("materials": [{"extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1},
+                                               "KHR_materials_dispersion": {}, "KHR_materials_ior": {"ior": 1.2}}}],
+                 "extensionsUsed": ["KHR_materials_anisotropy", "KHR_materials_iridescence", "KHR_materials_ior"],)";
     testing::internal::CaptureStderr();
     const Scene s = load_scene(write_gltf(dir, doc));
     const std::string err = testing::internal::GetCapturedStderr();
     std::printf("  stderr: %s", err.c_str());
     EXPECT_EQ(s.triangle_count(), 1u);
     EXPECT_NEAR(s.materials[0].ior, 1.2f, 1e-6f);
-    EXPECT_NE(err.find("tri.gltf: uses glTF extension(s) KHR_materials_specular, KHR_materials_clearcoat, which this "
+    EXPECT_NE(err.find("tri.gltf: uses glTF extension(s) KHR_materials_anisotropy, KHR_materials_iridescence, which this "
                        "loader does not implement; ignored"),
               std::string::npos);
     const auto count = [&](const std::string& what) {
@@ -850,8 +938,8 @@ TEST(GltfConformance, UnsupportedUsedExtensionsGetOneWarning)
         for (auto at = err.find(what); at != std::string::npos; at = err.find(what, at + 1)) ++n;
         return n;
     };
-    EXPECT_EQ(count("KHR_materials_clearcoat"), 1u) << "declared: named once, by the file's warning";
-    EXPECT_EQ(count("KHR_materials_sheen"), 1u) << "undeclared: still named, by the material's warning";
+    EXPECT_EQ(count("KHR_materials_iridescence"), 1u) << "declared: named once, by the file's warning";
+    EXPECT_EQ(count("KHR_materials_dispersion"), 1u) << "undeclared: still named, by the material's warning";
     EXPECT_EQ(count("KHR_materials_ior"), 0u) << "supported: no warning";
 }
 

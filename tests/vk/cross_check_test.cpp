@@ -91,7 +91,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // Normal map with authored TANGENTs: GLSL and OpenCL decode them alike.
                       SceneCase{"Avocado", "tests/data/scenes/avocado/Avocado.gltf", 96},
                       // KHR_texture_transform: transformed texture views on both sides.
-                      SceneCase{"TextureTransform", "tests/data/scenes/texture-transform/TextureTransformTest.gltf", 96}),
+                      SceneCase{"TextureTransform", "tests/data/scenes/texture-transform/TextureTransformTest.gltf", 96},
+                      // KHR_materials_clearcoat with its factor and roughness textures.
+                      SceneCase{"ClearCoat", "tests/data/scenes/ClearCoatTest/ClearCoatTest.gltf", 96},
+                      // KHR_materials_specular and KHR_materials_clearcoat factors on spheres.
+                      SceneCase{"MaterialLayers", "tests/data/scenes/material-layers/MaterialLayers.gltf", 96}),
     [](const ::testing::TestParamInfo<SceneCase>& param_info) { return std::string(param_info.param.name); });
 
 // Every light the OpenCL side has, on scenes in the repository, each through both integrators

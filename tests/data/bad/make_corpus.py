@@ -248,9 +248,9 @@ d = tri_doc(); d["extensionsUsed"] = ["KHR_materials_ior"]; d["extensionsRequire
 d["meshes"][0]["primitives"][0]["material"] = 0
 d["materials"] = [{"extensions": {"KHR_materials_ior": {"ior": 1.33}}}]
 gltf("gltf_extension_required_supported.gltf", d)
-d = tri_doc(); d["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_clearcoat"]
+d = tri_doc(); d["extensionsUsed"] = ["KHR_materials_anisotropy", "KHR_materials_iridescence"]
 d["meshes"][0]["primitives"][0]["material"] = 0
-d["materials"] = [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}}]
+d["materials"] = [{"extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1.0}}}]
 gltf("gltf_extension_used_unsupported.gltf", d)
 
 # ---------------------------------------------------------------------------------- .glb
