@@ -7,6 +7,7 @@
 #define GC_INSTANCE_H
 
 #include "gc_intersect.h"
+#include "gc_vecmath.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -21,11 +22,13 @@ GC_STRUCT(GcInstance) {
     uint mesh;      /* the mesh it copies */
 } GC_STRUCT_END(GcInstance)
 
-/* Closest hit of an instanced scene: hit.prim is the triangle's index in the scene of meshes. */
+/* Closest hit of an instanced scene: hit.prim is the triangle's index in the scene of meshes,
+ * instance the instance's id and slot its index in the instance buffer (leaf order), where
+ * shading finds its transform. */
 GC_STRUCT(GcInstanceHit) {
     GcHit hit;
     uint instance;
-    uint pad0;
+    uint slot;
     uint pad1;
     uint pad2;
 } GC_STRUCT_END(GcInstanceHit)
@@ -35,10 +38,20 @@ GC_FUNC GcInstanceHit gc_no_instance_hit(void)
     GcInstanceHit h;
     h.hit = gc_no_hit();
     h.instance = GC_INVALID;
-    h.pad0 = 0u;
+    h.slot = GC_INVALID;
     h.pad1 = 0u;
     h.pad2 = 0u;
     return h;
+}
+
+/* A normal from the instance's object space to world space: by the inverse transpose of
+ * object-to-world, which is the transpose of the stored world-to-object map; unit length. */
+GC_FUNC float3 gc_instance_normal_to_world(GcInstance inst, float3 n)
+{
+    const float3 w = make_float3((inst.row0.x * n.x + inst.row1.x * n.y) + inst.row2.x * n.z,
+                                 (inst.row0.y * n.x + inst.row1.y * n.y) + inst.row2.y * n.z,
+                                 (inst.row0.z * n.x + inst.row1.z * n.y) + inst.row2.z * n.z);
+    return gc_normalize(w);
 }
 
 GC_FUNC float gc_affine_row(float4 row, float x, float y, float z, float w)

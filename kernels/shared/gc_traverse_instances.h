@@ -82,6 +82,7 @@ GC_FUNC GcInstanceHit gc_trace_instances(GC_INSTANCE_PARAMS, GC_BVH_PARAMS, GcRa
                 if (h.t < t_best || inst.id < best.instance) {
                     best.hit = h;
                     best.instance = inst.id;
+                    best.slot = i;
                     t_best = h.t;
                     if (any_hit) return best;
                 }

@@ -1,0 +1,113 @@
+// First-hit images of an instanced scene (kernels/aov_instances.cl) against the flattened
+// scene's (kernels/aov.cl), on every OpenCL device in the layout it uses. Metric: the largest
+// absolute difference of any channel of any pixel, printed; depth and albedo must agree bit
+// for bit under the lattice transforms (both spaces exact), the world-space normal to 1e-6
+// (it is normalised after the transform, summing its squares in another axis order).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "../bvh/instance_scenes.h"
+#include "host/bvh/bvh.h"
+#include "host/bvh/instance_bvh.h"
+#include "host/cl/buffer.h"
+#include "host/cl/context.h"
+#include "host/cl/device.h"
+#include "host/cl/program.h"
+#include "host/render/device_scene.h"
+#include "host/render/integrator.h"
+#include "host/render/scene_convert.h"
+
+namespace gc {
+namespace {
+
+constexpr int kSide = 64;
+
+std::vector<glm::vec4> read_film(const cl::Context& context, const cl::Buffer<glm::vec4>& film)
+{
+    context.finish();
+    std::vector<glm::vec4> out(kSide * kSide);
+    film.read(out);
+    return out;
+}
+
+cl::Buffer<glm::vec4> zero_film(const cl::Context& context)
+{
+    auto film = cl::Buffer<glm::vec4>::create(context, kSide * kSide, CL_MEM_READ_WRITE, "film");
+    film.write(std::vector<glm::vec4>(kSide * kSide, glm::vec4(0.0f)));
+    return film;
+}
+
+template <class Bvh>
+std::vector<glm::vec4> render_instanced(const cl::Context& context, const DeviceScene& meshes, const Bvh& bvh,
+                                        const dev::GcRenderParams& params)
+{
+    const cl::Program program(context, "aov_instances.cl", scene_program_options(meshes));
+    auto tlas = cl::read_only_buffer(context, bvh.tlas, "tlas");
+    auto instances = cl::read_only_buffer(context, bvh.instances, "instances");
+    auto nodes = cl::read_only_buffer(context, bvh.nodes, "mesh nodes");
+    auto tris = cl::read_only_buffer(context, bvh.tris, "mesh triangles");
+    auto film = zero_film(context);
+    cl::Kernel kernel = program.kernel("aov_instances_render");
+    kernel.set_args(params, tlas, instances, nodes, tris, meshes.shade_args(), film);
+    kernel.launch(context, params.pixel_count, 0, "instanced aov");
+    return read_film(context, film);
+}
+
+TEST(InstanceAov, LatticeImagesEqualTheFlattenedScenes)
+{
+    std::string why;
+    const std::vector<cl::DeviceInfo> devices = cl::list_devices(&why);
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device: " << why;
+    const InstancedScene s = test::lattice_instances(3, 7);
+    const Scene flat = flatten_instances(s);
+    const FlatBvh flat_bvh = build_bvh(flat);
+    const FlatBvh mesh_bvh = build_bvh(s.meshes);
+    const InstanceBvhParts parts = build_instance_bvh(s);
+    Camera camera;
+    camera.look_from = Point3(-4.0f, 11.0f, -6.0f);
+    camera.look_at = Point3(3.0f, 3.0f, 3.0f);
+    camera.vfov_degrees = 50.0f;
+    for (const cl::DeviceInfo& device : devices) {
+        const cl::Context context(device);
+        const DeviceScene flat_scene = DeviceScene::upload(context, flat, flat_bvh);
+        const DeviceScene mesh_scene = DeviceScene::upload(context, s.meshes, mesh_bvh);
+        const cl::Program flat_program(context, "aov.cl", scene_program_options(flat_scene));
+        for (const AovKind aov : {AovKind::Depth, AovKind::Albedo, AovKind::Normal}) {
+            RenderSettings settings;
+            settings.width = settings.height = kSide;
+            settings.aov = aov;
+            const dev::GcRenderParams params = make_render_params(flat, camera, settings);
+            auto film = zero_film(context);
+            cl::Kernel kernel = flat_program.kernel("aov_render");
+            kernel.set_args(params, flat_scene.scene_args(), film);
+            kernel.launch(context, params.pixel_count, 0, "flattened aov");
+            const std::vector<glm::vec4> want = read_film(context, film);
+            std::vector<glm::vec4> got;
+            switch (mesh_scene.bvh.layout()) {
+            case BvhLayout::Binary: got = render_instanced(context, mesh_scene, assemble_binary(parts), params); break;
+            case BvhLayout::Wide: got = render_instanced(context, mesh_scene, assemble_wide(parts), params); break;
+            case BvhLayout::Wide8: got = render_instanced(context, mesh_scene, assemble_wide8(parts), params); break;
+            }
+            float worst = 0.0f;
+            std::size_t covered = 0;
+            for (std::size_t p = 0; p < want.size(); ++p) {
+                covered += want[p].x != 0.0f || want[p].y != 0.0f || want[p].z != 0.0f;
+                for (int c = 0; c < 4; ++c) worst = std::max(worst, std::fabs(got[p][c] - want[p][c]));
+            }
+            const float bound = aov == AovKind::Normal ? 1e-6f : 0.0f;
+            std::printf("[instanced aov] %s on %s, %s: %zu of %d pixels on geometry, max |difference| %g (bound %g)\n",
+                        aov_name(aov), device.device_name.c_str(), layout_name(mesh_scene.bvh.layout()), covered,
+                        kSide * kSide, static_cast<double>(worst), static_cast<double>(bound));
+            EXPECT_GT(covered, std::size_t{kSide * kSide / 8});  // sparse soups: a sixth of the image
+            EXPECT_LE(worst, bound) << aov_name(aov) << " on " << device.device_name;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace gc
