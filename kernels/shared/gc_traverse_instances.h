@@ -1,8 +1,9 @@
 /*
- * gc_traverse_instances.h — two-level traversal: a top-level BVH2 over instances, each an affine copy of
- * a mesh whose own bottom-level BVH is traversed in the device's layout (gc_traverse.h picks
- * BVH2, BVH4 or BVH8 by the program's options). Shared dialect of gc_platform.h for OpenCL C
- * and C++; GLSL has no pointers to offset, so the Vulkan reference does not include it yet.
+ * gc_traverse_instances.h — two-level traversal: a top-level BVH2 over instances, each an
+ * affine copy of a mesh whose own bottom-level BVH is traversed in the device's layout
+ * (gc_traverse.h picks BVH2, BVH4 or BVH8 by the program's options). Shared dialect of gc_platform.h for OpenCL C
+ * and C++, and GLSL, where the bottom trees are offset by bases in the accessors instead of
+ * by pointer arithmetic (kernels/vk/aov_instances.comp).
  *
  * Buffers (host/bvh/instance_bvh.h builds them):
  *   - gc_tlas_nodes: GcBvhNode[] over the instances' world bounds; a leaf's first/count index
@@ -42,14 +43,21 @@ GC_FUNC GcHit gc_trace_mesh(GC_BVH_PARAMS, GcRay ray, bool any_hit)
     return GC_TRACE_BODY(ray, any_hit);
 }
 
+#if defined(GC_GLSL)
+/* GLSL: the buffers are the SSBOs gc_tlas_nodes and gc_instances, and the shader's
+ * GC_BVH_NODE / GC_BVH_TRI add the bases that gc_use_mesh(inst) sets (aov_instances.comp). */
+#define GC_MESH_ARGS(inst) gc_use_mesh(inst)
+#define GC_INSTANCE_PARAMS uint gc_instance_unused
+#define GC_INSTANCE_ARGS 0u
+#else
 #if defined(GC_TRACE_OPAQUE)
 #define GC_MESH_ARGS(inst) gc_bvh_nodes + (inst).node_base, gc_bvh_tris + (inst).tri_base
 #else
 #define GC_MESH_ARGS(inst) gc_bvh_nodes + (inst).node_base, gc_bvh_tris + (inst).tri_base, GC_ALPHA_ARGS
 #endif
-
 #define GC_INSTANCE_PARAMS GC_GLOBAL const GcBvhNode *gc_tlas_nodes, GC_GLOBAL const GcInstance *gc_instances
 #define GC_INSTANCE_ARGS gc_tlas_nodes, gc_instances
+#endif
 
 /* The top level is gc_trace_impl's ordered BVH2 walk with instances in place of triangles. */
 GC_FUNC GcInstanceHit gc_trace_instances(GC_INSTANCE_PARAMS, GC_BVH_PARAMS, GcRay ray, bool any_hit)

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../bvh/instance_scenes.h"
+#include "instanced_aov_render.h"
 #include "host/bvh/bvh.h"
 #include "host/bvh/instance_bvh.h"
 #include "host/cl/buffer.h"
@@ -26,37 +27,9 @@ namespace gc {
 namespace {
 
 constexpr int kSide = 64;
-
-std::vector<glm::vec4> read_film(const cl::Context& context, const cl::Buffer<glm::vec4>& film)
-{
-    context.finish();
-    std::vector<glm::vec4> out(kSide * kSide);
-    film.read(out);
-    return out;
-}
-
-cl::Buffer<glm::vec4> zero_film(const cl::Context& context)
-{
-    auto film = cl::Buffer<glm::vec4>::create(context, kSide * kSide, CL_MEM_READ_WRITE, "film");
-    film.write(std::vector<glm::vec4>(kSide * kSide, glm::vec4(0.0f)));
-    return film;
-}
-
-template <class Bvh>
-std::vector<glm::vec4> render_instanced(const cl::Context& context, const DeviceScene& meshes, const Bvh& bvh,
-                                        const dev::GcRenderParams& params)
-{
-    const cl::Program program(context, "aov_instances.cl", scene_program_options(meshes));
-    auto tlas = cl::read_only_buffer(context, bvh.tlas, "tlas");
-    auto instances = cl::read_only_buffer(context, bvh.instances, "instances");
-    auto nodes = cl::read_only_buffer(context, bvh.nodes, "mesh nodes");
-    auto tris = cl::read_only_buffer(context, bvh.tris, "mesh triangles");
-    auto film = zero_film(context);
-    cl::Kernel kernel = program.kernel("aov_instances_render");
-    kernel.set_args(params, tlas, instances, nodes, tris, meshes.shade_args(), film);
-    kernel.launch(context, params.pixel_count, 0, "instanced aov");
-    return read_film(context, film);
-}
+using test::render_instanced_aov;
+using test::zero_film;
+using test::read_film;
 
 TEST(InstanceAov, LatticeImagesEqualTheFlattenedScenes)
 {
@@ -82,17 +55,12 @@ TEST(InstanceAov, LatticeImagesEqualTheFlattenedScenes)
             settings.width = settings.height = kSide;
             settings.aov = aov;
             const dev::GcRenderParams params = make_render_params(flat, camera, settings);
-            auto film = zero_film(context);
+            auto film = zero_film(context, params.pixel_count);
             cl::Kernel kernel = flat_program.kernel("aov_render");
             kernel.set_args(params, flat_scene.scene_args(), film);
             kernel.launch(context, params.pixel_count, 0, "flattened aov");
-            const std::vector<glm::vec4> want = read_film(context, film);
-            std::vector<glm::vec4> got;
-            switch (mesh_scene.bvh.layout()) {
-            case BvhLayout::Binary: got = render_instanced(context, mesh_scene, assemble_binary(parts), params); break;
-            case BvhLayout::Wide: got = render_instanced(context, mesh_scene, assemble_wide(parts), params); break;
-            case BvhLayout::Wide8: got = render_instanced(context, mesh_scene, assemble_wide8(parts), params); break;
-            }
+            const std::vector<glm::vec4> want = read_film(context, film, params.pixel_count);
+            const std::vector<glm::vec4> got = render_instanced_aov(context, mesh_scene, parts, params);
             float worst = 0.0f;
             std::size_t covered = 0;
             for (std::size_t p = 0; p < want.size(); ++p) {
