@@ -5,7 +5,7 @@
  * normals taken to world space. Depth and albedo need no conversion: t is the world t, and
  * materials and uvs belong to the mesh. The instance buffers come before the scene's.
  */
-#include "gc_aov.h"
+#include "gc_aov_instance.h"
 #include "gc_traverse_instances.h"
 
 __kernel void aov_instances_render(const GcRenderParams params, GC_INSTANCE_PARAMS, GC_SCENE_PARAMS,
@@ -20,10 +20,7 @@ __kernel void aov_instances_render(const GcRenderParams params, GC_INSTANCE_PARA
     if (h.instance == GC_INVALID) {
         value = gc_aov_value(GC_SHADE_ARGS, params, ray, h.hit);
     } else {
-        const GcInstance inst = gc_instances[h.slot];
-        value = gc_aov_value(GC_SHADE_ARGS, params, gc_instance_ray(inst, ray), h.hit);
-        if (params.aov == GC_AOV_NORMAL || params.aov == GC_AOV_GUIDE_NORMAL)
-            value = gc_instance_normal_to_world(inst, value);
+        value = gc_aov_instance_value(GC_SHADE_ARGS, params, gc_instances[h.slot], ray, h.hit);
     }
     film[pixel] += (float4)(value, 1.0f);
 }

@@ -26,7 +26,7 @@ uint gc_use_mesh(GcInstance inst)
     return 0u;
 }
 
-#include "gc_aov.h"
+#include "gc_aov_instance.h"
 #include "gc_traverse_instances.h"
 
 layout(local_size_x = GC_VK_LOCAL_SIZE) in;
@@ -45,10 +45,7 @@ void main()
     if (h.instance == GC_INVALID) {
         value = gc_aov_value(GC_SHADE_ARGS, params, ray, h.hit);
     } else {
-        const GcInstance inst = gc_instances[h.slot];
-        value = gc_aov_value(GC_SHADE_ARGS, params, gc_instance_ray(inst, ray), h.hit);
-        if (params.aov == GC_AOV_NORMAL || params.aov == GC_AOV_GUIDE_NORMAL)
-            value = gc_instance_normal_to_world(inst, value);
+        value = gc_aov_instance_value(GC_SHADE_ARGS, params, gc_instances[h.slot], ray, h.hit);
     }
     film[pixel] += vec4(value, 1.0f);
 }

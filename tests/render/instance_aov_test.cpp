@@ -1,8 +1,9 @@
 // First-hit images of an instanced scene (kernels/aov_instances.cl) against the flattened
 // scene's (kernels/aov.cl), on every OpenCL device in the layout it uses. Metric: the largest
 // absolute difference of any channel of any pixel, printed; depth and albedo must agree bit
-// for bit under the lattice transforms (both spaces exact), the world-space normal to 1e-6
-// (it is normalised after the transform, summing its squares in another axis order).
+// for bit under the lattice transforms (both spaces exact), the world-space normal and the
+// preview (a headlight on it) to 1e-6: the normal is renormalised after the transform,
+// summing its squares in another axis order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,7 +53,7 @@ TEST(InstanceAov, LatticeImagesEqualTheFlattenedScenes)
         const DeviceScene flat_scene = DeviceScene::upload(context, flat, flat_bvh);
         const DeviceScene mesh_scene = DeviceScene::upload(context, s.meshes, mesh_bvh);
         const cl::Program flat_program(context, "aov.cl", scene_program_options(flat_scene));
-        for (const AovKind aov : {AovKind::Depth, AovKind::Albedo, AovKind::Normal}) {
+        for (const AovKind aov : {AovKind::Depth, AovKind::Albedo, AovKind::Normal, AovKind::Preview}) {
             RenderSettings settings;
             settings.width = settings.height = kSide;
             settings.aov = aov;
@@ -69,7 +70,7 @@ TEST(InstanceAov, LatticeImagesEqualTheFlattenedScenes)
                 covered += want[p].x != 0.0f || want[p].y != 0.0f || want[p].z != 0.0f;
                 for (int c = 0; c < 4; ++c) worst = std::max(worst, std::fabs(got[p][c] - want[p][c]));
             }
-            const float bound = aov == AovKind::Normal ? 1e-6f : 0.0f;
+            const float bound = aov == AovKind::Normal || aov == AovKind::Preview ? 1e-6f : 0.0f;
             std::printf("[instanced aov] %s on %s, %s: %zu of %d pixels on geometry, max |difference| %g (bound %g)\n",
                         aov_name(aov), device.device_name.c_str(), layout_name(mesh_scene.bvh.layout()), covered,
                         kSide * kSide, static_cast<double>(worst), static_cast<double>(bound));

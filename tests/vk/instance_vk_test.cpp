@@ -40,7 +40,7 @@ void expect_vulkan_equals_opencl(Context& context, cl::Context& cl_context, cons
     tuning.bvh_layout = BvhLayout::Binary;  // the layout the Vulkan reference reads
     const DeviceScene meshes = DeviceScene::upload(cl_context, s.meshes, build_bvh(s.meshes), {}, tuning);
     const InstancedBvh bvh = assemble_binary(parts);
-    for (const AovKind aov : {AovKind::Depth, AovKind::Albedo, AovKind::Normal}) {
+    for (const AovKind aov : {AovKind::Depth, AovKind::Albedo, AovKind::Normal, AovKind::Preview}) {
         RenderSettings settings;
         settings.width = settings.height = 64;
         settings.aov = aov;
