@@ -1,27 +1,32 @@
 // geocold-instances: the instancing stress scene. One mesh (the 100k-triangle dragon for the
-// acceptance run) copied N times on a cubic grid under seeded random rotations, traced as a
-// two-level BVH (kernels/trace_instances.cl) with one primary ray per pixel. Prints the device
-// bytes of the meshes' trees and of the instances (and per instance), and writes the hit
-// depth as a PGM when asked.
+// acceptance run) copied N times on a cubic grid under seeded random rotations, rendered
+// through the two-level BVH as first-hit AOVs (kernels/aov_instances.cl, one sample per
+// pixel). Prints the device bytes of the meshes and of the instances (and per instance), and
+// writes the image when asked.
 //
-//     geocold-instances --mesh dragon.obj --instances 1000000 --device gpu --out depth.pgm
+//     geocold-instances --mesh dragon.obj --instances 1000000 --device gpu --out dragons.png
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "host/bvh/bvh.h"
 #include "host/bvh/instance_bvh.h"
+#include "host/image/image_io.h"
 #include "host/cl/buffer.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/cl/program.h"
 #include "host/math/to_device.h"
 #include "host/render/device_bvh.h"
+#include "host/render/device_scene.h"
+#include "host/render/integrator.h"
+#include "host/render/scene_convert.h"
 #include "host/scene/instances.h"
 #include "host/scene/load.h"
 #include "host/util/error.h"
@@ -38,6 +43,7 @@ struct Options {
     int height = 256;
     std::uint32_t seed = 1;
     std::string out;
+    AovKind aov = AovKind::Preview;
 };
 
 const char* kUsage =
@@ -48,8 +54,17 @@ const char* kUsage =
     "  --layout L         auto, bvh2, bvh4 or bvh8: the meshes' tree layout (default auto)\n"
     "  --size WxH         primary rays (default 256x256)\n"
     "  --seed S           rotations' seed (default 1)\n"
-    "  --out FILE.pgm     the hit depth as an 8-bit PGM\n"
+    "  --aov NAME         preview, albedo, normal, depth or primid (default preview)\n"
+    "  --out FILE         the image (.png, .exr, ...; linear formats keep the values)\n"
     "Exit status: 0 success, 1 no ray hit, otherwise geocold-cl's codes (usage, input, device).\n";
+
+std::optional<BvhLayout> layout_of(const Options& o)
+{
+    if (o.layout == "bvh2") return BvhLayout::Binary;
+    if (o.layout == "bvh4") return BvhLayout::Wide;
+    if (o.layout == "bvh8") return BvhLayout::Wide8;
+    return std::nullopt;
+}
 
 Options parse(int argc, char** argv)
 {
@@ -70,12 +85,19 @@ Options parse(int argc, char** argv)
                 throw UsageError("--size wants WxH, got '" + v + "'");
         } else if (a == "--seed") o.seed = static_cast<std::uint32_t>(std::stoul(value()));
         else if (a == "--out") o.out = value();
+        else if (a == "--aov") {
+            const std::string v = value();
+            const std::optional<AovKind> k = aov_from_name(v);
+            if (!k) throw UsageError("--aov: unknown AOV '" + v + "'");
+            o.aov = *k;
+        }
         else if (a == "-h" || a == "--help") {
             std::fputs(kUsage, stdout);
             std::exit(0);
         } else throw UsageError("unknown option '" + a + "'\n" + kUsage);
     }
     if (o.mesh.empty()) throw UsageError(std::string("--mesh is required\n") + kUsage);
+    if (o.layout != "auto" && !layout_of(o)) throw UsageError("--layout wants auto, bvh2, bvh4 or bvh8");
     if (o.instances == 0 || o.instances > 0xfffffff0u) throw UsageError("--instances must be 1 .. 4294967280");
     return o;
 }
@@ -111,71 +133,71 @@ InstancedScene make_scene(Scene mesh, std::size_t n, std::uint32_t seed, float& 
 }
 
 template <class Bvh>
-int run(const Options& o, const cl::DeviceInfo& device, BvhLayout layout, const Bvh& bvh, float spacing, int side,
-        std::size_t triangles_drawn)
+int run(const Options& o, const cl::DeviceInfo& device, const InstancedScene& scene, const Bvh& bvh, float spacing,
+        int side)
 {
     const cl::Context context(device);
-    const cl::Program program(context, "trace_instances.cl", program_options(layout));
+    DeviceTuning tuning;
+    tuning.bvh_layout = bvh_layout_for(device, layout_of(o));
+    // The scene of meshes: attributes, materials and textures (its own BVH is not traced).
+    const DeviceScene meshes = DeviceScene::upload(context, scene.meshes, build_bvh(scene.meshes), {}, tuning);
+    const cl::Program program(context, "aov_instances.cl", scene_program_options(meshes));
     auto tlas = cl::read_only_buffer(context, bvh.tlas, "tlas");
     auto instances = cl::read_only_buffer(context, bvh.instances, "instances");
     auto nodes = cl::read_only_buffer(context, bvh.nodes, "mesh nodes");
     auto tris = cl::read_only_buffer(context, bvh.tris, "mesh triangles");
-    const std::uint64_t mesh_bytes = nodes.bytes() + tris.bytes();
+    const std::uint64_t mesh_bytes = nodes.bytes() + tris.bytes() + meshes.bytes() - meshes.bvh.bytes();
     const std::uint64_t instance_bytes = tlas.bytes() + instances.bytes();
-    std::printf("device %s, layout %s\n", device.device_name.c_str(), layout_name(layout));
-    std::printf("device bytes: meshes %llu, instances %llu (%.1f per instance), total %llu for %zu triangles drawn "
-                "(%.4f bytes per drawn triangle)\n",
+    const std::size_t drawn = scene.instanced_triangle_count();
+    std::printf("device %s, layout %s\n", device.device_name.c_str(), layout_name(meshes.bvh.layout()));
+    std::printf("device bytes: meshes %llu (trees and shading data), instances %llu (%.1f per instance), total %llu "
+                "for %zu triangles drawn (%.4f bytes per drawn triangle)\n",
                 (unsigned long long)mesh_bytes, (unsigned long long)instance_bytes,
-                double(instance_bytes) / double(o.instances), (unsigned long long)(mesh_bytes + instance_bytes),
-                triangles_drawn, double(mesh_bytes + instance_bytes) / double(triangles_drawn));
+                double(instance_bytes) / double(o.instances), (unsigned long long)(mesh_bytes + instance_bytes), drawn,
+                double(mesh_bytes + instance_bytes) / double(drawn));
 
-    // A pinhole camera outside the grid's corner, looking at its far corner.
+    // A pinhole camera just outside the grid's corner, looking along its diagonal: the nearest
+    // copies fill the foreground, the rest recede to the far corner.
     const float extent = spacing * float(side);
-    const glm::vec3 eye(-0.35f * extent, 0.6f * extent, -0.45f * extent);
-    const glm::vec3 forward = glm::normalize(glm::vec3(extent) * 0.6f - eye);
-    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
-    const glm::vec3 up = glm::cross(right, forward);
-    const float half = std::tan(0.5f * glm::radians(50.0f));
-    std::vector<dev::GcRay> rays;
-    rays.reserve(std::size_t(o.width) * o.height);
-    for (int y = 0; y < o.height; ++y)
-        for (int x = 0; x < o.width; ++x) {
-            const float sx = (2.0f * (x + 0.5f) / o.width - 1.0f) * half * o.width / o.height;
-            const float sy = (1.0f - 2.0f * (y + 0.5f) / o.height) * half;
-            rays.push_back(dev::gc_make_ray(eye, glm::normalize(forward + sx * right + sy * up), 0.0f, GC_INFINITY));
-        }
-    const auto count = static_cast<std::uint32_t>(rays.size());
-    auto ray_buf = cl::read_only_buffer(context, rays, "rays");
-    auto hit_buf = cl::Buffer<dev::GcInstanceHit>::create(context, count, CL_MEM_WRITE_ONLY, "hits");
-    auto occ_buf = cl::Buffer<std::uint32_t>::create(context, count, CL_MEM_WRITE_ONLY, "occluded");
-    cl::Kernel kernel = program.kernel("trace_instances_closest");
-    kernel.set_args(tlas, instances, nodes, tris, ray_buf, hit_buf, occ_buf, count);
+    Camera camera;
+    camera.look_from = Point3(-1.2f * spacing, 0.5f * extent, -1.6f * spacing);
+    camera.look_at = Point3(extent, 0.35f * extent, extent);
+    camera.vfov_degrees = 50.0f;
+    RenderSettings settings;
+    settings.width = o.width;
+    settings.height = o.height;
+    settings.integrator = IntegratorKind::Aov;
+    settings.aov = o.aov;
+    const dev::GcRenderParams params = make_render_params(scene.meshes, camera, settings);
+    auto film_buf = cl::Buffer<glm::vec4>::create(context, params.pixel_count, CL_MEM_READ_WRITE, "film");
+    film_buf.write(std::vector<glm::vec4>(params.pixel_count, glm::vec4(0.0f)));
+    cl::Kernel kernel = program.kernel("aov_instances_render");
+    kernel.set_args(params, tlas, instances, nodes, tris, meshes.shade_args(), film_buf);
     const auto t0 = std::chrono::steady_clock::now();
-    kernel.launch(context, count);
+    kernel.launch(context, params.pixel_count, 0, "instanced aov");
     context.finish();
-    const double trace_s = seconds_since(t0);
-    std::vector<dev::GcInstanceHit> hits(count);
-    hit_buf.read(hits);
-    std::size_t hit_count = 0;
-    float t_min = GC_INFINITY, t_max = 0.0f;
-    for (const dev::GcInstanceHit& h : hits)
-        if (h.instance != GC_INVALID) {
-            ++hit_count;
-            t_min = std::fmin(t_min, h.hit.t);
-            t_max = std::fmax(t_max, h.hit.t);
-        }
-    std::printf("traced %u rays (closest + any) in %.3f s: %zu hits (%.1f %%)\n", count, trace_s, hit_count,
-                100.0 * double(hit_count) / count);
-    if (!o.out.empty()) {
-        std::ofstream f(o.out, std::ios::binary);
-        f << "P5\n" << o.width << " " << o.height << "\n255\n";
-        for (const dev::GcInstanceHit& h : hits) {
-            const float d = h.instance == GC_INVALID ? 0.0f : 1.0f - 0.8f * (h.hit.t - t_min) / std::fmax(t_max - t_min, 1e-6f);
-            f.put(static_cast<char>(static_cast<unsigned char>(std::lround(255.0f * d))));
-        }
-        if (!f) throw InputError(o.out + ": cannot write the image");
+    const double render_s = seconds_since(t0);
+    std::vector<glm::vec4> sums(params.pixel_count);
+    film_buf.read(sums);
+    Film film(params.width, params.height);
+    std::size_t lit = 0;
+    for (std::uint32_t i = 0; i < params.pixel_count; ++i) {
+        const glm::vec4 v = sums[i];
+        lit += v.x != 0.0f || v.y != 0.0f || v.z != 0.0f;
+        film.set(i % params.width, i / params.width, Rgba{v.x, v.y, v.z, 1.0f});
     }
-    return hit_count > 0 ? 0 : 1;
+    std::printf("rendered %ux%u (%s, 1 sample) in %.3f s: %zu pixels on geometry (%.1f %%)\n", params.width,
+                params.height, aov_name(o.aov), render_s, lit, 100.0 * double(lit) / params.pixel_count);
+    if (!o.out.empty()) {
+        ImageMetadata meta;
+        meta.device = device.device_name;
+        meta.integrator = "aov";
+        meta.scene = o.mesh + " x " + std::to_string(o.instances);
+        meta.spp = 1;
+        meta.seconds = render_s;
+        write_image(o.out, film, meta);
+    }
+    return lit > 0 ? 0 : 1;
 }
 
 }  // namespace
@@ -199,17 +221,10 @@ int main(int argc, char** argv)
         const InstanceBvhParts parts = build_instance_bvh(scene);
         std::printf("two-level BVH built in %.2f s\n", seconds_since(t1));
         const cl::DeviceInfo device = cl::select_device(o.device);
-        std::optional<BvhLayout> chosen;
-        if (o.layout == "bvh2") chosen = BvhLayout::Binary;
-        else if (o.layout == "bvh4") chosen = BvhLayout::Wide;
-        else if (o.layout == "bvh8") chosen = BvhLayout::Wide8;
-        else if (o.layout != "auto") throw UsageError("--layout wants auto, bvh2, bvh4 or bvh8");
-        const BvhLayout layout = bvh_layout_for(device, chosen);
-        const std::size_t drawn = scene.instanced_triangle_count();
-        switch (layout) {
-        case BvhLayout::Binary: return run(o, device, layout, assemble_binary(parts), spacing, side, drawn);
-        case BvhLayout::Wide: return run(o, device, layout, assemble_wide(parts), spacing, side, drawn);
-        case BvhLayout::Wide8: return run(o, device, layout, assemble_wide8(parts), spacing, side, drawn);
+        switch (bvh_layout_for(device, layout_of(o))) {
+        case BvhLayout::Binary: return run(o, device, scene, assemble_binary(parts), spacing, side);
+        case BvhLayout::Wide: return run(o, device, scene, assemble_wide(parts), spacing, side);
+        case BvhLayout::Wide8: return run(o, device, scene, assemble_wide8(parts), spacing, side);
         }
         return 1;
     } catch (const Error& e) {
