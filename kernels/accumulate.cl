@@ -12,7 +12,7 @@ __kernel void accumulate(const GcRenderParams params,
 {
     const uint slot = get_global_id(0);
     if (slot >= params.pixel_count) return;
-    const uint pixel = params.pixel_offset + slot;
+    const uint pixel = paths[slot * params.samples_in_pass].pixel; /* generate.cl's gc_batch_pixel */
     float4 sum = film[pixel];
     float4 squares = film_squares[pixel];
     for (uint s = 0u; s < params.samples_in_pass; ++s) {

@@ -42,9 +42,11 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
                                 const GcRenderParams params,
                                 GC_SCENE_PARAMS,
                                 __global float4* film,
-                                __global float4* film_squares)
+                                __global float4* film_squares,
+                                __global const uint* pixel_list)
 {
-    /* This work-item's pixels: pixels_per_item neighbours in the batch (gc_packet_lanes.h). */
+    /* This work-item's pixels: pixels_per_item neighbours in the batch (gc_packet_lanes.h;
+     * neighbours in the pixel list when the batch is listed, gc_batch_pixel). */
     const uint per_item = max(params.pixels_per_item, 1u);
     const uint first = item * per_item;
     const uint samples = params.samples_in_pass;
@@ -62,7 +64,7 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
         /* generate.cl */
         GcRay cam[8];
         for (uint k = 0u; k < lanes; ++k) {
-            const uint px = params.pixel_offset + first + (p0 + k) / samples;
+            const uint px = gc_batch_pixel(params, pixel_list, first + (p0 + k) / samples);
             const uint sample = params.sample_index + (p0 + k) % samples;
             const float4 jitter = gc_rand4(px, sample, GC_RNG_BLOCK_CAMERA, params.seed);
             cam[k] = gc_camera_sample(params.camera, params.width, params.height, px % params.width, px / params.width,
@@ -84,7 +86,7 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
         }
 #endif
         for (uint k = 0u; k < lanes; ++k) {
-            const uint px = params.pixel_offset + first + (p0 + k) / samples;
+            const uint px = gc_batch_pixel(params, pixel_list, first + (p0 + k) / samples);
             if (px != pixel) {
                 if (pixel != GC_INVALID) {
                     film[pixel] = sum;
@@ -120,7 +122,8 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
 __kernel void path_megakernel(const GcRenderParams params,
                               GC_SCENE_PARAMS,
                               __global float4* film,
-                              __global float4* film_squares)
+                              __global float4* film_squares,
+                              __global const uint* pixel_list)
 {
-    gc_megakernel_item(get_global_id(0), params, GC_SCENE_ARGS, film, film_squares);
+    gc_megakernel_item(get_global_id(0), params, GC_SCENE_ARGS, film, film_squares, pixel_list);
 }

@@ -4,8 +4,9 @@
  *   generate -> [ extend -> shade -> shadow ] x max_depth -> accumulate
  *
  * A pass renders samples_in_pass consecutive sample indices for a batch of pixels (several
- * only when the image is smaller than the wavefront). Path slot s * pixel_count + i owns
- * sample sample_index + s of pixel pixel_offset + i for the whole pass; accumulate.cl adds
+ * only when the image is smaller than the wavefront). Path slot i * samples_in_pass + s owns
+ * sample sample_index + s of the batch's pixel i (gc_batch_pixel) for the whole pass;
+ * accumulate.cl adds
  * each pixel's samples in sample order. Queues hold slot indices (pushed as gc_queue.h says);
  * every stage is launched over the queue's capacity and returns early past the queue's
  * count, so the host never reads a counter mid-pass (pbrt-v4's WorkQueue scheme). Because

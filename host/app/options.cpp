@@ -176,6 +176,12 @@ Options parse_options(const std::vector<std::string>& args)
             if (o.samples_end <= o.samples_first) bad_value(arg, v, "a non-empty sample range A:B with A < B");
             o.partial = true;
         }
+        else if (arg == "--noise-threshold") {
+            const std::string v = value();
+            const float threshold = parse_float(arg, v);
+            if (threshold <= 0.0f) bad_value(arg, v, "a relative standard error > 0, e.g. 0.02");
+            o.render.noise_threshold = threshold;
+        }
         else if (arg == "--chunk-samples")
             o.chunk_samples = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxSpp));
         else if (arg == "--resume") o.resume_path = value();
@@ -230,6 +236,15 @@ Options parse_options(const std::vector<std::string>& args)
         throw UsageError("--resume, --checkpoint-every and --aovs are for a whole frame, not a --samples range");
     if (!o.resume_path.empty() && std::find_if(o.aovs.begin(), o.aovs.end(), needs_squares) != o.aovs.end())
         throw UsageError("--aovs variance cannot go with --resume: the resumed samples' squares are not kept");
+    if (o.render.noise_threshold > 0.0 && o.render.integrator != IntegratorKind::Path)
+        throw UsageError(std::string("--noise-threshold needs --integrator path, not ") +
+                         (o.render.integrator == IntegratorKind::Aov ? "an AOV" : integrator_name(o.render.integrator)));
+    if (o.render.noise_threshold > 0.0 && o.partial)
+        throw UsageError("--noise-threshold cannot render a partial image (--samples): its decisions need every "
+                         "earlier sample of the frame");
+    if (o.render.noise_threshold > 0.0 && (!o.resume_path.empty() || o.checkpoint_seconds > 0))
+        throw UsageError("--noise-threshold cannot go with --resume or --checkpoint-every: its check points need "
+                         "the squares of every earlier sample, which partial images do not keep");
     if (!o.help && !o.version && !o.list_devices && o.scene_path.empty())
         throw UsageError("no scene given");
     return o;
@@ -271,7 +286,11 @@ Rendering:
       --aov NAME           preview | albedo | normal | depth | primid   (implies
                            --integrator aov); guide-albedo | guide-normal: albedo and
                            normal seen through mirrors and glass (--denoise's guides)
-      --spp N              samples per pixel (default 64)
+      --spp N              samples per pixel (default 64); with --noise-threshold, the cap
+      --noise-threshold T  adaptive sampling: 8x8 tiles stop once the relative standard
+                           error of every pixel's mean is below T (e.g. 0.02), checked after
+                           16 samples (rounded up to a chunk) and each doubling of that; the
+                           same image on every run and device (path integrator only)
       --time-limit SEC     stop after the pass that crosses SEC seconds (whichever of
                            --spp and --time-limit ends first)
       --res WxH            image size (default 512x512); also --width N, --height N

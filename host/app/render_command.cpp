@@ -16,6 +16,7 @@
 #include "host/cl/device.h"
 #include "host/image/denoise.h"
 #include "host/image/image_io.h"
+#include "host/render/adaptive.h"
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
 #include "host/render/denoise_guides.h"
@@ -165,6 +166,7 @@ ExitCode run_render(const Options& options)
 
     FrameOutcome outcome;
     std::uint32_t samples = 0;
+    std::uint64_t pixel_samples = 0;  // over all pixels: fewer than width x height x samples when adaptive
     const RenderSetup setup = render_setup_from_environment();
     if (options.partial) {
         PartialImage part = partial_image_header(prepared, settings, plan, meta);
@@ -192,12 +194,22 @@ ExitCode run_render(const Options& options)
         const DisplayTransform display = display_transform(options, settings, output);
         FrameCheckpoints checkpoints(options, output, partial_image_header(prepared, settings, plan, meta), meta, display);
         control.with_squares = std::any_of(options.aovs.begin(), options.aovs.end(), needs_squares);
-        ResumedFrame resumed = render_frame_from(devices, prepared, settings, setup, plan, control,
-                                                 checkpoints.take_start(), checkpoints.while_rendering());
+        ResumedFrame resumed;
+        if (settings.noise_threshold > 0.0)  // never with --resume or --checkpoint-every (options.cpp)
+            resumed.frame = render_frame(devices, prepared, settings, setup, plan, control,
+                                         adaptive_rounds(settings.noise_threshold, settings.spp, plan.chunk_samples));
+        else
+            resumed = render_frame_from(devices, prepared, settings, setup, plan, control, checkpoints.take_start(),
+                                        checkpoints.while_rendering());
         FrameResult& frame = resumed.frame;
         progress.finish();
         outcome = frame.outcome;
         samples = frame.end_sample;
+        pixel_samples = total_samples(frame.sums);
+        if (settings.noise_threshold > 0.0)
+            log_info("adaptive sampling: " + std::to_string(pixel_samples) + " samples in total, mean " +
+                     fixed(double(pixel_samples) / (double(settings.width) * settings.height), 1) + " spp (cap " +
+                     std::to_string(settings.spp) + ")");
         meta.device = device_names(outcome, devices.size() == 1);
         meta.spp = samples;
         meta.seconds = outcome.seconds;
@@ -230,8 +242,8 @@ ExitCode run_render(const Options& options)
                     " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
                     (d.failure.empty() ? "" : ", failed: " + d.failure));
     const double render_seconds = outcome.seconds;
-    const double samples_per_second =
-        static_cast<double>(settings.width) * settings.height * samples / std::max(render_seconds, 1e-9);
+    if (options.partial) pixel_samples = std::uint64_t(settings.width) * settings.height * samples;
+    const double samples_per_second = static_cast<double>(pixel_samples) / std::max(render_seconds, 1e-9);
     log_info("wrote " + output.string() + (options.partial ? " (partial, " : " (") + std::to_string(settings.width) +
              "x" + std::to_string(settings.height) + ", " + std::to_string(samples) + " spp, " +
              fixed(render_seconds, 2) + " s, " + fixed(samples_per_second / 1e6, 2) + " Msamples/s on " +

@@ -139,6 +139,12 @@ std::uint32_t FrameAccumulator::samples_folded() const
     return m_started ? m_folded_end - m_plan.first_sample : 0;
 }
 
+FilmSums FrameAccumulator::frame() const
+{
+    std::lock_guard lock(m_mutex);
+    return m_started ? m_frame : FilmSums{};
+}
+
 std::uint32_t FrameAccumulator::next_chunk() const
 {
     std::lock_guard lock(m_mutex);

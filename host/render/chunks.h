@@ -91,6 +91,8 @@ public:
 
     // Samples folded into the frame so far (a contiguous prefix of the plan).
     std::uint32_t samples_folded() const;
+    // A copy of the frame folded so far (empty sums before the first chunk).
+    FilmSums frame() const;
     // The global index of the next chunk due.
     std::uint32_t next_chunk() const;
     // Folds the best truncated chunk that continues the prefix, and returns the frame (empty

@@ -105,6 +105,11 @@ std::uint64_t render_options_hash(const RenderSettings& settings, const Camera& 
     add_value(h, settings.aov);
     add_vec3(h, settings.env_radiance);
     add_value(h, chunk_samples);
+    // Only when set, so that the hashes of uniform frames stay those of earlier versions.
+    if (settings.noise_threshold > 0.0) {
+        h.add_field("noise threshold");
+        add_value(h, settings.noise_threshold);
+    }
     add_vec3(h, glm::vec3(camera.look_from.x, camera.look_from.y, camera.look_from.z));
     add_vec3(h, glm::vec3(camera.look_at.x, camera.look_at.y, camera.look_at.z));
     add_vec3(h, glm::vec3(camera.up.x, camera.up.y, camera.up.z));

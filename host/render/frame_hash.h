@@ -1,7 +1,7 @@
 // The hashes that say whether two partial images belong to one frame: the content of the
 // scene (what its files loaded into: geometry, materials, textures, lights) and the options
 // that change the image (size, camera, integrator, depth, environment and the environment
-// map's bytes, chunk size). Not the seed (recorded on its own), the sample count or range,
+// map's bytes, chunk size, adaptive sampling's noise threshold). Not the seed (recorded on its own), the sample count or range,
 // nor what only changes the speed (device, wavefront size, samples per pass).
 #pragma once
 

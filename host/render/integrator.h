@@ -28,9 +28,12 @@ namespace gc {
 
 // The film's device buffers, one entry per pixel: the sums of the samples' radiance and of
 // its squares (for the variance). Integrators add to them, in sample order per pixel.
+// `pixel_list` names the pixels a pass renders when params.flags has GC_RENDER_PIXEL_LIST
+// (the path integrator's; Renderer::select_pixels); kernels take it either way.
 struct FilmBuffers {
     cl::Buffer<glm::vec4> sums;
     cl::Buffer<glm::vec4> squares;
+    cl::Buffer<std::uint32_t> pixel_list;
 };
 
 class Integrator {
@@ -48,7 +51,8 @@ public:
     // Sets the pass-wide parameters the integrator decides (params.samples_in_pass is set).
     virtual void begin_pass(dev::GcRenderParams& /*params*/) {}
     // Enqueues the work that adds params.samples_in_pass samples, from params.sample_index on,
-    // to the pixels [params.pixel_offset, + params.pixel_count).
+    // to the pixels [params.pixel_offset, + params.pixel_count), or to those entries of
+    // film.pixel_list (GC_RENDER_PIXEL_LIST).
     virtual void render_batch(const dev::GcRenderParams& params, const DeviceScene& scene,
                               const FilmBuffers& film) = 0;
     // Called once the device has finished the pass's batches.

@@ -24,18 +24,40 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
+// The chunk numbers that end each round: one per check point, then the plan's end.
+std::vector<std::uint32_t> round_ends(const ChunkPlan& plan, const ChunkRounds& rounds)
+{
+    std::vector<std::uint32_t> ends;
+    for (std::uint32_t point : rounds.check_points) {
+        if (point <= plan.first_sample || point >= plan.end_sample || point % plan.chunk_samples != 0 ||
+            (!ends.empty() && point <= plan.first_sample + ends.back() * plan.chunk_samples))
+            throw UsageError("check point " + std::to_string(point) + " is not an ascending chunk boundary inside " +
+                             std::to_string(plan.first_sample) + ":" + std::to_string(plan.end_sample));
+        ends.push_back((point - plan.first_sample) / plan.chunk_samples);
+    }
+    ends.push_back(plan.chunk_count());
+    return ends;
+}
+
 // What every device's thread shares. Chunks are named by their number n in the plan.
 struct Shared {
-    Shared(const ChunkPlan& plan_, std::size_t devices)
-        : plan(plan_), finished(plan_.chunk_count()), progress(devices), seconds_per_sample(devices)
+    Shared(const ChunkPlan& plan_, std::size_t devices, const ChunkRounds& rounds_)
+        : plan(plan_),
+          rounds(rounds_),
+          ends(round_ends(plan_, rounds_)),
+          finished(plan_.chunk_count()),
+          progress(devices),
+          seconds_per_sample(devices)
     {
-        for (std::uint32_t n = 0; n < plan.chunk_count(); ++n) todo.push_back(n);
+        for (std::uint32_t n = 0; n < ends.front(); ++n) todo.push_back(n);
         for (auto& p : progress) p = 0;
         for (auto& s : seconds_per_sample) s = 0.0;
         reserved.resize(devices);
     }
 
     const ChunkPlan plan;
+    const ChunkRounds& rounds;
+    const std::vector<std::uint32_t> ends;  // round_ends
     std::mutex mutex;
     std::condition_variable changed;
     std::deque<std::uint32_t> todo;                       // not yet taken, in order
@@ -43,6 +65,11 @@ struct Shared {
     std::map<std::uint32_t, std::set<std::size_t>> running;  // started, by which devices
     std::vector<std::atomic<bool>> finished;              // delivered (a copy still running stops)
     std::uint32_t finished_count = 0;
+    std::size_t round = 0;  // the round queued last
+    bool rounds_over = false;  // a pick left no pixel: no more rounds
+    std::shared_ptr<const std::vector<std::uint32_t>> pixels;  // the round's pick; null: every pixel
+    std::uint32_t sunk_count = 0;  // complete chunks through the sink (under sink_mutex)
+    std::exception_ptr round_error;  // a pick that threw: the frame stops and render_chunks rethrows it
     std::vector<std::atomic<std::uint32_t>> progress;     // samples of its current chunk, per device
     std::vector<std::atomic<double>> seconds_per_sample;  // per device, 0 = not known yet
     std::atomic<bool> stop{false};
@@ -54,7 +81,43 @@ struct Shared {
 
     std::mutex sink_mutex;      // one sink call at a time
     std::mutex progress_mutex;  // one on_progress call at a time
+
+    // Chunks queued so far end here (a round's end).
+    std::uint32_t queued_end() const { return ends[round]; }
+    // Whether another round may still be queued (under mutex).
+    bool round_pending() const { return !rounds_over && round + 1 < ends.size(); }
 };
+
+// After the sink took a complete chunk (under sink_mutex): if that completed the round, pick
+// the next round's pixels and queue its chunks.
+void start_next_round_if_due(Shared& shared)
+{
+    {
+        std::lock_guard lock(shared.mutex);
+        if (shared.sunk_count != shared.queued_end() || !shared.round_pending() || shared.stop) return;
+    }
+    const std::uint32_t check_point = shared.plan.first_sample + shared.queued_end() * shared.plan.chunk_samples;
+    std::shared_ptr<const std::vector<std::uint32_t>> pixels;
+    try {
+        pixels = std::make_shared<const std::vector<std::uint32_t>>(shared.rounds.pixels_after(check_point));
+    } catch (...) {
+        // Not a device's failure: every device would wait for a round that never comes.
+        std::lock_guard lock(shared.mutex);
+        shared.round_error = std::current_exception();
+        shared.stop = true;
+        shared.changed.notify_all();
+        return;
+    }
+    std::lock_guard lock(shared.mutex);
+    if (pixels->empty()) {
+        shared.rounds_over = true;
+    } else {
+        ++shared.round;
+        shared.pixels = std::move(pixels);
+        for (std::uint32_t n = shared.ends[shared.round - 1]; n < shared.queued_end(); ++n) shared.todo.push_back(n);
+    }
+    shared.changed.notify_all();
+}
 
 }  // namespace
 
@@ -67,10 +130,10 @@ std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t dev
 
 FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
                            const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
-                           const FrameControl& control, const ChunkSink& sink)
+                           const FrameControl& control, const ChunkSink& sink, const ChunkRounds& rounds)
 {
     if (devices.empty()) throw UsageError("no device to render on");
-    Shared shared(plan, devices.size());
+    Shared shared(plan, devices.size(), rounds);
     shared.live = devices.size();
     FrameOutcome outcome;
     outcome.devices.resize(devices.size());
@@ -104,10 +167,12 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
             }
             const auto elapsed = [&] { return seconds_between(start, Clock::now()); };
             const bool limited = control.time_limit_seconds > 0.0;
+            std::shared_ptr<const std::vector<std::uint32_t>> selected;  // the renderer's pick
 
             for (;;) {
                 std::uint32_t n = 0;
                 bool backup = false;
+                std::shared_ptr<const std::vector<std::uint32_t>> pixels;
                 {
                     std::unique_lock lock(shared.mutex);
                     for (;;) {
@@ -158,7 +223,7 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                             backup = true;
                             break;
                         }
-                        if (shared.running.empty() && shared.todo.empty()) {
+                        if (shared.running.empty() && shared.todo.empty() && !shared.round_pending()) {
                             bool any_reserved = false;
                             for (const auto& r : shared.reserved) any_reserved = any_reserved || !r.empty();
                             if (!any_reserved) return;  // the plan is done
@@ -167,10 +232,16 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                     }
                     shared.running[n].insert(me);
                     mine.push_back(n);
+                    pixels = shared.pixels;
                 }
 
                 const ChunkRange range = plan.chunk(n);
                 const auto chunk_start = Clock::now();
+                if (pixels != selected) {
+                    if (pixels) renderer.select_pixels(*pixels);
+                    else renderer.select_all_pixels();
+                    selected = pixels;
+                }
                 renderer.clear(range.first);
                 std::uint32_t done = 0;
                 bool abandoned = false;
@@ -228,13 +299,15 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                     if (backup) ++report.backups;
                     report.finished_at = seconds_between(start, Clock::now());
                     shared.complete_samples += range.count;
-                    FilmSums sums = renderer.sums(control.with_squares);
+                    FilmSums sums = renderer.sums(control.with_squares || rounds.active());
                     std::lock_guard lock(shared.sink_mutex);
                     sink(range, std::move(sums), true);
+                    ++shared.sunk_count;
+                    if (rounds.active()) start_next_round_if_due(shared);
                 } else if (truncated) {
                     ChunkRange cut = range;
                     cut.count = done;
-                    FilmSums sums = renderer.sums(control.with_squares);
+                    FilmSums sums = renderer.sums(control.with_squares || rounds.active());
                     std::lock_guard lock(shared.sink_mutex);
                     sink(cut, std::move(sums), false);
                 }
@@ -272,11 +345,12 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
     for (std::size_t i = 0; i < devices.size(); ++i) threads.emplace_back(worker, i);
     for (auto& t : threads) t.join();
 
+    if (shared.round_error) std::rethrow_exception(shared.round_error);
     outcome.cancelled = shared.cancelled;
     outcome.timed_out = shared.timed_out;
     outcome.seconds = shared.start ? seconds_between(*shared.start, Clock::now()) : seconds_between(called, Clock::now());
     const bool stopped = shared.cancelled || shared.timed_out;
-    if (!stopped && shared.finished_count < plan.chunk_count()) {
+    if (!stopped && shared.finished_count < shared.queued_end()) {
         for (const auto& e : errors)
             if (e) std::rethrow_exception(e);
         throw DeviceError("the frame ended with chunks missing and no device error (a bug)");
@@ -289,15 +363,23 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
 
 FrameResult render_frame(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
                          const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
-                         const FrameControl& control)
+                         const FrameControl& control, const FrameRounds& rounds)
 {
     FrameAccumulator frame(plan);
+    ChunkRounds chunk_rounds;
+    if (rounds.pixels_after) {
+        chunk_rounds.check_points = rounds.check_points;
+        chunk_rounds.pixels_after = [&](std::uint32_t check_point) {
+            return rounds.pixels_after(frame.frame(), check_point);
+        };
+    }
     FrameResult result;
     result.outcome = render_chunks(devices, prepared, settings, setup, plan, control,
                                    [&](const ChunkRange& range, FilmSums&& sums, bool complete) {
                                        if (complete) frame.add(range, std::move(sums));
                                        else frame.add_truncated(range, std::move(sums));
-                                   });
+                                   },
+                                   chunk_rounds);
     result.sums = frame.finish(&result.end_sample);
     return result;
 }

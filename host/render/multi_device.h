@@ -62,20 +62,34 @@ struct FrameOutcome {
 };
 
 // Called from the devices' threads, one call at a time, for each chunk as it completes (its
-// sums and sample counts; squares only with FrameControl::with_squares); and,
+// sums and sample counts; squares only with FrameControl::with_squares or in a frame in
+// rounds, since they double the read-back); and,
 // at a cancel or a deadline, for each chunk in flight with the samples it got (complete = false,
 // range.count cut to them; never for a chunk with none).
 using ChunkSink = std::function<void(const ChunkRange& range, FilmSums&& sums, bool complete)>;
+
+// A frame rendered in rounds (adaptive sampling, adaptive.h). Each check point (a sample count
+// inside the plan, a multiple of its chunk size, ascending) ends a round; the next round is
+// queued once every chunk before its check point has reached the sink, and renders only the
+// pixels `pixels_after(check point)` picks then (strictly ascending indices; an empty pick ends
+// the frame there). Devices wait at each check point: the picks depend on every earlier chunk.
+// The chunks of a frame in rounds carry their squares, which the picks need.
+struct ChunkRounds {
+    std::vector<std::uint32_t> check_points;
+    std::function<std::vector<std::uint32_t>(std::uint32_t check_point)> pixels_after;
+    bool active() const { return static_cast<bool>(pixels_after); }
+};
 
 // How many chunks a device asks for at a time: 1 for a CPU; for a GPU, a quarter of its fair
 // share of what is left, at most 8.
 std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count);
 
-// Renders every chunk of `plan` (until `control` stops it) on `devices`, handing each to
-// `sink`. Throws the first device's error when every device failed.
+// Renders every chunk of `plan` (until `control` stops it, or `rounds` ends it early) on
+// `devices`, handing each to `sink`. Throws the first device's error when every device failed,
+// and UsageError for check points that do not fit the plan.
 FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
                            const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
-                           const FrameControl& control, const ChunkSink& sink);
+                           const FrameControl& control, const ChunkSink& sink, const ChunkRounds& rounds = {});
 
 struct FrameResult {
     FilmSums sums;               // the frame: chunks added in chunk order
@@ -83,10 +97,18 @@ struct FrameResult {
     FrameOutcome outcome;
 };
 
+// ChunkRounds whose picks look at the frame so far: every chunk before the check point, added
+// in chunk order, squares included.
+struct FrameRounds {
+    std::vector<std::uint32_t> check_points;
+    std::function<std::vector<std::uint32_t>(const FilmSums& frame, std::uint32_t check_point)> pixels_after;
+};
+
 // render_chunks, with the chunks added into the frame in chunk order. After a cancel or a
-// deadline the frame holds the longest prefix of the plan that was rendered.
+// deadline the frame holds the longest prefix of the plan that was rendered; after rounds that
+// picked no pixel, the frame up to that check point.
 FrameResult render_frame(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
                          const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
-                         const FrameControl& control);
+                         const FrameControl& control, const FrameRounds& rounds = {});
 
 }  // namespace gc

@@ -30,6 +30,9 @@ struct RenderSettings {
     // Path integrator: at most this many samples per pixel in one pass; 0 = chosen by the
     // renderer (host/render/pass_planner.h on CPUs, as many as the wavefront holds on GPUs).
     std::uint32_t samples_per_pass = 0;
+    // Adaptive sampling (host/render/adaptive.h): a pixel stops once the relative standard
+    // error of its mean is below this, spp being the cap; 0 = off (every pixel gets spp).
+    double noise_threshold = 0.0;
 };
 
 inline const char* integrator_name(IntegratorKind k)

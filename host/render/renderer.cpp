@@ -58,6 +58,8 @@ Renderer::Renderer(const cl::Context& context, std::shared_ptr<const DeviceScene
     const std::uint32_t pixels = m_params.width * m_params.height;
     m_film.sums = film_buffer(context, pixels, "film");
     m_film.squares = film_buffer(context, pixels, "film squares");
+    // A placeholder until select_pixels: the path kernels take the list either way.
+    m_film.pixel_list = cl::Buffer<std::uint32_t>::create(context, 1, CL_MEM_READ_ONLY, "pixel list");
     clear();
 }
 
@@ -84,6 +86,31 @@ void Renderer::set_camera(const Camera& camera)
     m_camera = camera;
     update_params();
     clear();
+}
+
+void Renderer::select_pixels(std::vector<std::uint32_t> pixels)
+{
+    if (m_settings.integrator != IntegratorKind::Path)
+        throw UsageError(std::string("only the path integrator renders selected pixels, not ") +
+                         integrator_name(m_settings.integrator));
+    const std::uint32_t image = m_params.width * m_params.height;
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        if (pixels[i] >= image || (i > 0 && pixels[i] <= pixels[i - 1]))
+            throw UsageError("selected pixels must be strictly ascending indices below " + std::to_string(image) +
+                             " (entry " + std::to_string(i) + " is " + std::to_string(pixels[i]) + ")");
+    if (m_film.pixel_list.count() < std::max<std::size_t>(pixels.size(), 1))
+        m_film.pixel_list = cl::Buffer<std::uint32_t>::create(m_context, image, CL_MEM_READ_ONLY, "pixel list");
+    m_film.pixel_list.write(pixels);
+    m_pixel_list = std::move(pixels);
+    m_pixels_listed = true;
+    clear(m_next_sample);
+}
+
+void Renderer::select_all_pixels()
+{
+    m_pixel_list.clear();
+    m_pixels_listed = false;
+    clear(m_next_sample);
 }
 
 void Renderer::follow_scene_updates()
@@ -116,7 +143,8 @@ void Renderer::render(std::uint32_t first_sample, std::uint32_t count)
 std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
 {
     follow_scene_updates();
-    const std::uint32_t pixels = m_params.width * m_params.height;
+    const std::uint32_t pixels =
+        m_pixels_listed ? static_cast<std::uint32_t>(m_pixel_list.size()) : m_params.width * m_params.height;
     std::uint32_t samples = 1;
     if (m_integrator->plans_passes_by_time()) {
         samples = m_planner.next(max_samples);
@@ -129,6 +157,8 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     m_params.sample_index = m_next_sample;
     m_params.samples_in_pass = samples;
     m_params.pixels_per_item = 1;
+    m_params.flags &= ~GC_RENDER_PIXEL_LIST;
+    if (m_pixels_listed) m_params.flags |= GC_RENDER_PIXEL_LIST;
     m_integrator->begin_pass(m_params);
     for (std::uint32_t offset = 0; offset < pixels; offset += m_batch_pixels) {
         m_params.pixel_offset = offset;
@@ -154,8 +184,17 @@ FilmSums Renderer::sums(bool with_squares) const
         out.squares.resize(m_film.squares.count());
         m_film.squares.read(out.squares);
     }
-    out.sample_counts.assign(out.sums.size(), m_sample_count);
+    out.sample_counts = pixel_sample_counts();
     return out;
+}
+
+std::vector<std::uint32_t> Renderer::pixel_sample_counts() const
+{
+    const std::size_t pixels = std::size_t(m_params.width) * m_params.height;
+    if (!m_pixels_listed) return std::vector<std::uint32_t>(pixels, m_sample_count);
+    std::vector<std::uint32_t> counts(pixels, 0u);
+    for (std::uint32_t p : m_pixel_list) counts[p] = m_sample_count;
+    return counts;
 }
 
 Film Renderer::film() const
@@ -163,9 +202,10 @@ Film Renderer::film() const
     const std::size_t pixels = m_film.sums.count();
     std::vector<glm::vec4> sums(pixels);
     m_film.sums.read(sums);
+    const std::vector<std::uint32_t> counts = pixel_sample_counts();
     Film film(m_params.width, m_params.height);
-    const float inv = m_sample_count > 0 ? 1.0f / static_cast<float>(m_sample_count) : 0.0f;
     for (std::size_t i = 0; i < pixels; ++i) {
+        const float inv = counts[i] > 0 ? 1.0f / static_cast<float>(counts[i]) : 0.0f;
         const std::uint32_t x = static_cast<std::uint32_t>(i % m_params.width);
         const std::uint32_t y = static_cast<std::uint32_t>(i / m_params.width);
         film.set(x, y, Rgba{sums[i].x * inv, sums[i].y * inv, sums[i].z * inv, 1.0f});

@@ -71,11 +71,19 @@ public:
 
     // Points the camera elsewhere; the film restarts.
     void set_camera(const Camera& camera);
+    // The passes that follow render only `pixels` (indices y * width + x, strictly ascending;
+    // UsageError otherwise, or for an integrator other than path); the others get no samples
+    // and count none (sums()). Each listed pixel gets the bits it gets in a render of every
+    // pixel. The film restarts at next_sample(). Adaptive sampling's rounds (adaptive.h).
+    void select_pixels(std::vector<std::uint32_t> pixels);
+    // Every pixel again (the default); the film restarts at next_sample().
+    void select_all_pixels();
     // Empties the film; the next render_samples starts at sample `next_sample`.
     void clear(std::uint32_t next_sample = 0);
 
-    // Samples each pixel of the film holds, and the index the next render_samples starts at.
-    // After a scene update, 0: the next render restarts the film.
+    // Samples each pixel of the film holds (each selected pixel: select_pixels), and the index
+    // the next render_samples starts at. After a scene update, 0: the next render restarts the
+    // film.
     std::uint32_t samples_done() const { return m_scene->revision == m_scene_revision ? m_sample_count : 0; }
     std::uint32_t next_sample() const { return m_next_sample; }
     // Whether the passes have reached their steady size (benchmarks time from there on).
@@ -114,6 +122,8 @@ private:
     // The kernels' parameters from the scene, the camera and the settings (the per-pass
     // fields are set by render_samples).
     void update_params();
+    // Per pixel, the samples the film holds: samples_done(), or 0 for a pixel not selected.
+    std::vector<std::uint32_t> pixel_sample_counts() const;
 
     const cl::Context& m_context;
     std::shared_ptr<const DeviceScene> m_scene;
@@ -127,6 +137,8 @@ private:
     std::unique_ptr<Integrator> m_integrator;
     PassPlanner m_planner;  // samples per pass where planned by time; pass times of any integrator
     FilmBuffers m_film;
+    bool m_pixels_listed = false;              // select_pixels: only m_pixel_list renders
+    std::vector<std::uint32_t> m_pixel_list;  // ascending; its copy is m_film.pixel_list
     std::uint32_t m_sample_count = 0;
     std::uint32_t m_next_sample = 0;
 };

@@ -108,7 +108,7 @@ void WavefrontPathIntegrator::render_batch(const dev::GcRenderParams& params, co
 {
     const std::uint32_t n = params.pixel_count * params.samples_in_pass;
     zero_counters(m_context, m_counters, 0, GC_COUNTER_COUNT);
-    m_generate.set_args(params, m_rays, m_paths, m_queue_a, m_counters);
+    m_generate.set_args(params, m_rays, m_paths, m_queue_a, m_counters, film.pixel_list);
     m_generate.launch(m_context, n, 0, "camera rays");
 
     std::uint32_t live = n;

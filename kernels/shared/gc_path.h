@@ -67,6 +67,14 @@ GC_FUNC float3 gc_film_value(float3 L)
 {
     return (isfinite(L.x) && isfinite(L.y) && isfinite(L.z)) ? L : (float3)(0.0f);
 }
+
+/* The pixel of slot i of the pass's batch: consecutive pixels from pixel_offset, or the
+ * listed ones (GC_RENDER_PIXEL_LIST). A pixel's random numbers are keyed by the pixel itself,
+ * so a listed pixel gets the bits it gets in a render of every pixel. */
+GC_FUNC uint gc_batch_pixel(GcRenderParams params, __global const uint* pixel_list, uint i)
+{
+    return (params.flags & GC_RENDER_PIXEL_LIST) != 0u ? pixel_list[params.pixel_offset + i] : params.pixel_offset + i;
+}
 #endif
 
 GC_NAMESPACE_END

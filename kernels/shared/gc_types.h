@@ -233,6 +233,11 @@ GC_STRUCT(GcCamera) {
 #define GC_AOV_GUIDE_ALBEDO 5u
 #define GC_AOV_GUIDE_NORMAL 6u
 
+/* GcRenderParams.flags. GC_RENDER_PIXEL_LIST: the path integrator's batch slot i renders the
+ * pixel pixel_list[pixel_offset + i] rather than pixel_offset + i (adaptive sampling renders
+ * only the pixels still too noisy; gc_batch_pixel). */
+#define GC_RENDER_PIXEL_LIST 1u
+
 /* The one parameter block every kernel takes. Set in one place on the host. */
 GC_STRUCT(GcRenderParams) {
     GcCamera camera;
@@ -248,8 +253,8 @@ GC_STRUCT(GcRenderParams) {
     uint num_emitters;
     uint num_point_lights;
     uint num_textures;
-    uint flags;
-    uint pixel_offset; /* first pixel of this pass's batch */
+    uint flags;        /* GC_RENDER_* */
+    uint pixel_offset; /* first pixel of this pass's batch (first entry of the pixel list) */
     uint pixel_count;  /* pixels in this pass's batch */
     uint rr_depth;     /* Russian roulette starts at this depth */
     float emitter_power; /* sum over emitters of area * luminance(emission): light pdf norm */

@@ -507,7 +507,7 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
                  integrator: str = "path", aov: Optional[str] = None, res: Tuple[int, int] = (512, 512),
                  max_depth: int = 8, seed: int = 0, rr_depth: int = 5,
                  env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
-                 time_limit: float = 0.0) -> Tuple[Any, int]:
+                 time_limit: float = 0.0, noise_threshold: float = 0.0) -> Tuple[Any, int]:
     """Renders one frame on several devices at once, as ``geocold-cl --device all``.
 
     ``devices``: ``"all"``, or a list of device specs (as :class:`Renderer`'s ``device``). The
@@ -516,7 +516,9 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
     CLI with the same ``--chunk-samples``. ``samples=(a, b)``: only samples [a, b) (``a`` a
     multiple of ``chunk_samples``), like ``--samples a:b``. Returns ``(image, spp)``: the mean
     (float32 (H, W, 4)) and the samples per pixel in it (fewer than asked when ``time_limit``
-    ended the frame). Ctrl-C raises ``KeyboardInterrupt``."""
+    ended the frame). ``noise_threshold=T`` (> 0), like ``--noise-threshold T``: adaptive
+    sampling, each 8x8 tile stopping once its pixels' relative standard error is below ``T``,
+    ``spp`` the cap; the same image on every run. Ctrl-C raises ``KeyboardInterrupt``."""
     if not isinstance(scene, Scene):
         raise ArgumentError(f"render_frame: scene must be a geocold.Scene, not {type(scene).__name__}")
     if isinstance(devices, str):
@@ -542,8 +544,11 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
                              ("seed", seed, 0), ("rr_depth", rr_depth, 0), ("first sample", first, 0)):
         if isinstance(value, bool) or not isinstance(value, int) or not low <= value < 2 ** 32:
             raise ArgumentError(f"render_frame: {name} must be an integer in [{low}, 2^32), not {value!r}")
+    if isinstance(noise_threshold, bool) or not isinstance(noise_threshold, (int, float)):
+        raise ArgumentError(f"render_frame: noise_threshold must be a number, not {noise_threshold!r}")
     return _geocold.render_frame(scene._core, specs, integrator, aov, width, height, first, end, chunk_samples,
-                                 seed, max_depth, rr_depth, env, env_map or "", float(time_limit))
+                                 seed, max_depth, rr_depth, env, env_map or "", float(time_limit),
+                                 float(noise_threshold))
 
 
 _META_KEYS = ("device", "integrator", "scene", "spp", "seconds", "seed")

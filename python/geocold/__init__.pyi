@@ -139,8 +139,9 @@ def render_frame(scene: Scene, devices: Union[str, List[Union[str, int, Device]]
                  samples: Optional[Tuple[int, int]] = ..., chunk_samples: int = ..., integrator: str = ...,
                  aov: Optional[str] = ..., res: Tuple[int, int] = ..., max_depth: int = ..., seed: int = ...,
                  rr_depth: int = ..., env: Union[float, Vec3] = ..., env_map: Optional[str] = ...,
-                 time_limit: float = ...) -> Tuple[Image, int]:
-    """One frame on several devices (chunks added in chunk order); returns (mean image, spp)."""
+                 time_limit: float = ..., noise_threshold: float = ...) -> Tuple[Image, int]:
+    """One frame on several devices (chunks added in chunk order); returns (mean image, spp).
+    noise_threshold > 0: adaptive sampling, spp the cap."""
 
 def denoise(color: Any, albedo: Any = ..., normal: Any = ..., *, clean_aux: bool = ...) -> Any: ...
 def write(path: PathLike, image: Any, metadata: Optional[Mapping[str, Any]] = ..., *, tonemap: str = ...,

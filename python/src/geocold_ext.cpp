@@ -33,6 +33,7 @@
 #include "host/cl/device.h"
 #include "host/image/image_io.h"
 #include "host/image/image_module.h"
+#include "host/render/adaptive.h"
 #include "host/render/chunks.h"
 #include "host/render/device_scene.h"
 #include "host/render/environment.h"
@@ -290,7 +291,9 @@ RenderSettings render_settings(const std::string& integrator, const std::string&
 
 // One frame on several devices at once (host/render/multi_device.h): chunks of chunk_samples
 // samples, added in chunk order, so devices of one kind give the bits of one. Returns the mean
-// of samples [first, end) (or of the prefix a time limit left) and its sample count. The
+// of samples [first, end) (or of the prefix a time limit left) and its sample count (with a
+// noise threshold > 0, adaptive sampling, host/render/adaptive.h: the cap, each pixel's mean
+// over its own samples). The
 // frame runs on its own thread while this one, holding the GIL now and then, watches for
 // Ctrl-C (Python sees signals only on the main thread).
 std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState> state,
@@ -299,14 +302,26 @@ std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState
                                                       int height, std::uint32_t first, std::uint32_t end,
                                                       std::uint32_t chunk_samples, std::uint32_t seed,
                                                       std::uint32_t max_depth, std::uint32_t rr_depth,
-                                                      const Vec3Tuple& env, const std::string& env_map, double time_limit)
+                                                      const Vec3Tuple& env, const std::string& env_map, double time_limit,
+                                                      double noise_threshold)
 {
     if (time_limit < 0.0 || !std::isfinite(time_limit))
         throw UsageError("time_limit must be a non-negative number of seconds");
+    if (noise_threshold < 0.0 || !std::isfinite(noise_threshold))
+        throw UsageError("noise_threshold must be a relative standard error > 0, or 0 for none");
     if (device_specs.empty()) throw UsageError("devices must name at least one device");
-    const RenderSettings settings =
-        render_settings(integrator, aov, width, height, end, seed, max_depth, rr_depth, env, env_map);
+    RenderSettings settings = render_settings(integrator, aov, width, height, end, seed, max_depth, rr_depth, env, env_map);
     const ChunkPlan plan = ChunkPlan::for_range(first, end, chunk_samples);
+    FrameRounds rounds;
+    if (noise_threshold > 0.0) {
+        if (settings.integrator != IntegratorKind::Path)
+            throw UsageError("noise_threshold needs integrator='path', not '" + integrator + "'");
+        if (first != 0)
+            throw UsageError("noise_threshold cannot render a sample range (samples=...): its decisions need every "
+                             "earlier sample of the frame");
+        settings.noise_threshold = noise_threshold;
+        rounds = adaptive_rounds(noise_threshold, end, chunk_samples);
+    }
     const RenderSetup setup = python_render_setup();
 
     std::vector<cl::DeviceInfo> devices;
@@ -332,7 +347,7 @@ std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState
         std::thread frame([&] {
             try {
                 const std::lock_guard<std::mutex> lock(state->mutex);
-                result = render_frame(devices, state->prepared, settings, setup, plan, control);
+                result = render_frame(devices, state->prepared, settings, setup, plan, control, rounds);
             } catch (...) {
                 error = std::current_exception();
             }
@@ -651,7 +666,7 @@ NB_MODULE(_geocold, m)
     m.def("cli_main", &cli_main, "args"_a);
     m.def("render_frame", &render_frame_on, "scene"_a, "devices"_a, "integrator"_a, "aov"_a, "width"_a, "height"_a,
           "first"_a, "end"_a, "chunk_samples"_a, "seed"_a, "max_depth"_a, "rr_depth"_a, "env"_a, "env_map"_a,
-          "time_limit"_a);
+          "time_limit"_a, "noise_threshold"_a);
     m.def("has_oiio", [] { return gc::image_io_has_oiio(); });
 
     nb::class_<SceneState>(m, "SceneState")

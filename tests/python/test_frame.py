@@ -40,3 +40,27 @@ def test_a_sample_range(gc, cornell, device):
         assert "multiple of the chunk size" in str(e)
     else:
         raise AssertionError("a range that does not start a chunk was accepted")
+
+
+def test_adaptive_frame_repeats_its_bits_and_matches_the_cli(gc, device, cli, tmp_path):
+    sphere = gc.load(CORNELL.parent / "CornellBox-Sphere.obj")
+    args = dict(spp=64, chunk_samples=16, res=RES, noise_threshold=0.2)
+    one, spp = gc.render_frame(sphere, [device], **args)
+    two, _ = gc.render_frame(sphere, [device, device], **args)
+    assert spp == 64
+    assert np.array_equal(bits(one), bits(two))
+    out = tmp_path / "adaptive.pfm"
+    subprocess.run([cli, "--quiet", "--device", device, "--res", f"{RES[0]}x{RES[1]}", "--spp", "64",
+                    "--chunk-samples", "16", "--noise-threshold", "0.2", str(CORNELL.parent / "CornellBox-Sphere.obj"),
+                    "-o", str(out)], check=True)
+    assert np.array_equal(bits(one), read_pfm(out).view(np.uint32))
+    # Not the uniform frame: some tiles stopped early.
+    uniform, _ = gc.render_frame(sphere, [device], spp=64, chunk_samples=16, res=RES)
+    assert not np.array_equal(bits(one), bits(uniform))
+    for bad, kwargs in ((-0.1, {}), (0.1, {"integrator": "whitted"}), (0.1, {"samples": (16, 64)})):
+        try:
+            gc.render_frame(sphere, [device], chunk_samples=16, res=RES, noise_threshold=bad, **kwargs)
+        except gc.ArgumentError as e:
+            assert "noise_threshold" in str(e)
+        else:
+            raise AssertionError(f"noise_threshold={bad} with {kwargs} was accepted")
