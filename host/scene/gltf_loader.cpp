@@ -57,8 +57,12 @@ std::uint64_t physical_memory_bytes()
 
 class GltfConverter {
 public:
-    GltfConverter(const tinygltf::Model& model, const std::string& name, const GltfFileLog& files, Scene& scene)
-        : m_model(model), m_name(name), m_files(files), m_scene(scene)
+    // With `instanced`, each mesh goes into `scene` once, in object space, and every node that
+    // draws it becomes an instance of it in `instanced` (whose meshes member the caller fills
+    // with `scene` afterwards); without, every node's mesh is flattened into `scene`.
+    GltfConverter(const tinygltf::Model& model, const std::string& name, const GltfFileLog& files, Scene& scene,
+                  InstancedScene* instanced = nullptr)
+        : m_model(model), m_name(name), m_files(files), m_scene(scene), m_instanced(instanced)
     {
     }
 
@@ -107,13 +111,17 @@ public:
             for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world});
         }
 
-        // All instances are counted before the first is expanded (see reserve_triangles).
+        // All instances are counted before the first is expanded (see reserve_triangles); kept
+        // as instances, each mesh is expanded once.
+        std::set<int> counted;
         for (const Placed& p : placed)
-            if (const int mesh = m_model.nodes[static_cast<std::size_t>(p.node)].mesh; mesh >= 0) reserve_triangles(mesh);
+            if (const int mesh = m_model.nodes[static_cast<std::size_t>(p.node)].mesh; mesh >= 0)
+                if (!m_instanced || counted.insert(mesh).second) reserve_triangles(mesh);
         for (const Placed& p : placed) {
             const tinygltf::Node& node = m_model.nodes[static_cast<std::size_t>(p.node)];
             const Transform to_world(p.world);
-            if (node.mesh >= 0) add_mesh(node.mesh, to_world);
+            if (node.mesh >= 0 && m_instanced) add_instance(node.mesh, p.world);
+            else if (node.mesh >= 0) add_mesh(node.mesh, to_world);
             if (node.camera >= 0) add_camera(node.camera, to_world);
             add_light(node, to_world);
         }
@@ -174,6 +182,21 @@ private:
             }
             add_primitive(prim, where, to_world, flip);
         }
+    }
+
+    // Mesh `mesh_index` in object space the first time a node draws it; then an instance of it.
+    // A mesh without triangles (only unsupported primitive modes) gets no instance.
+    void add_instance(int mesh_index, const glm::mat4& world)
+    {
+        auto [it, is_new] = m_mesh_ids.try_emplace(mesh_index, 0u);
+        if (is_new) {
+            const auto first = static_cast<std::uint32_t>(m_scene.triangle_count());
+            add_mesh(mesh_index, Transform(glm::mat4(1.0f)));
+            const auto count = static_cast<std::uint32_t>(m_scene.triangle_count()) - first;
+            it->second = count == 0 ? kNoMesh : static_cast<std::uint32_t>(m_instanced->mesh_ranges.size());
+            if (count > 0) m_instanced->mesh_ranges.push_back({first, count});
+        }
+        if (it->second != kNoMesh) m_instanced->instances.push_back({it->second, world});
     }
 
     // Instancing multiplies triangles without costing the file a byte: a few hundred bytes of
@@ -607,6 +630,9 @@ private:
     std::set<int> m_warned_modes;
     std::uint64_t m_planned_triangles = 0; // over every mesh instance so far
     std::uint64_t m_instances = 0;
+    InstancedScene* m_instanced = nullptr;
+    static constexpr std::uint32_t kNoMesh = 0xffffffffu;
+    std::map<int, std::uint32_t> m_mesh_ids; // glTF mesh -> InstancedScene mesh (instanced mode)
     std::vector<int> m_uv_sets; // per glTF material: the TEXCOORD_n its textures read
 };
 
@@ -645,7 +671,11 @@ void forward_warnings(const std::string& warn, const std::string& name)
 
 }  // namespace
 
-Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
+namespace {
+
+// load_gltf and load_gltf_instanced: the file read, checked and converted; `instanced` as
+// GltfConverter takes it.
+Scene convert_gltf(const std::filesystem::path& path, const LoadOptions& options, InstancedScene* instanced)
 {
     const std::string name = path.string();
     const std::vector<unsigned char> bytes = read_regular_file(path);
@@ -690,7 +720,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
 
     Scene scene;
     scene.source_path = name;
-    GltfConverter converter(model, name, files, scene);
+    GltfConverter converter(model, name, files, scene, instanced);
     converter.convert_materials();
     converter.convert_scene(scene_index);
     // tinygltf's warnings only once the scene is known to load: when it does not, the error
@@ -700,6 +730,21 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
     if (scene.triangle_count() == 0) throw InputError(name + ": no triangles");
     if (scene.materials.empty()) scene.materials.push_back(Material{});
     return scene;
+}
+
+}  // namespace
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options)
+{
+    return convert_gltf(path, options, nullptr);
+}
+
+InstancedScene load_gltf_instanced(const std::filesystem::path& path, const LoadOptions& options)
+{
+    InstancedScene out;
+    out.meshes = convert_gltf(path, options, &out);
+    validate_instances(out);
+    return out;
 }
 
 }  // namespace gc

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "host/scene/instances.h"
 #include "host/scene/load_options.h"
 #include "host/scene/scene.h"
 
@@ -17,5 +18,12 @@ namespace gc {
 // Lambert 0.5 material, as OBJ faces do. The first perspective camera met in the hierarchy
 // becomes Scene::camera; KHR_lights_punctual point lights become Scene::point_lights.
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// The same file with its node tree kept as instances: every mesh a node draws is stored once,
+// in object space (InstancedScene::meshes, in the order nodes first draw them), and each such
+// node becomes an instance with its world transform; materials, camera and lights as above.
+// flatten_instances() of the result is load_gltf's scene up to the transforms' rounding and
+// the winding of mirrored instances (kept as in the file: the instance's determinant says so).
+InstancedScene load_gltf_instanced(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace gc

@@ -19,6 +19,9 @@ constexpr std::uint32_t kPathComp[] =
 constexpr std::uint32_t kWhittedComp[] =
 #include "whitted.comp.inc"
     ;
+constexpr std::uint32_t kAovInstancesComp[] =
+#include "aov_instances.comp.inc"
+    ;
 
 }  // namespace
 
@@ -27,5 +30,6 @@ std::span<const std::uint32_t> raster_frag() { return kRasterFrag; }
 std::span<const std::uint32_t> aov_comp() { return kAovComp; }
 std::span<const std::uint32_t> path_comp() { return kPathComp; }
 std::span<const std::uint32_t> whitted_comp() { return kWhittedComp; }
+std::span<const std::uint32_t> aov_instances_comp() { return kAovInstancesComp; }
 
 }  // namespace gc::vk::shaders

@@ -12,5 +12,6 @@ std::span<const std::uint32_t> raster_frag();
 std::span<const std::uint32_t> aov_comp();
 std::span<const std::uint32_t> path_comp();
 std::span<const std::uint32_t> whitted_comp();
+std::span<const std::uint32_t> aov_instances_comp();
 
 }  // namespace gc::vk::shaders

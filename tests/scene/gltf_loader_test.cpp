@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "host/scene/gltf_conformance.h"
+#include "host/scene/gltf_loader.h"
+#include "host/scene/instances.h"
 #include "host/scene/load.h"
 #include "host/scene/triangle_sink.h"
 #include "scene_test_util.h"
@@ -682,6 +684,44 @@ TEST(GltfErrors, NodeCycle)
     Doc doc;
     doc.nodes = R"([{"mesh": 0, "children": [1]}, {"children": [0]}])";
     expect_input_error([&] { load_scene(write_gltf(dir, doc)); }, {"tri.gltf", "node"});
+}
+
+// A mesh drawn by three nodes (one a child, under rotation and scale) is stored once when the
+// node tree is kept as instances; flattening those gives the flattening loader's triangles.
+TEST(GltfInstanced, MeshDrawnByThreeNodesIsStoredOnce)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.nodes = R"([{"mesh": 0, "translation": [10, 0, 0], "children": [1]},
+                    {"mesh": 0, "rotation": [0, 0, 0.70710678, 0.70710678], "scale": [2, 2, 2]},
+                    {"mesh": 0, "translation": [0, 0, -3]}])";
+    doc.scenes = R"([{"nodes": [0, 2]}])";
+    const auto path = write_gltf(dir, doc);
+    const InstancedScene inst = load_gltf_instanced(path);
+    const Scene flat = load_scene(path);
+    std::printf("instanced: %zu mesh triangles, %zu instances; flattened loader: %zu triangles\n",
+                inst.meshes.triangle_count(), inst.instances.size(), flat.triangle_count());
+    EXPECT_EQ(inst.meshes.triangle_count(), 1u);
+    ASSERT_EQ(inst.mesh_ranges.size(), 1u);
+    ASSERT_EQ(inst.instances.size(), 3u);
+    const Scene expanded = flatten_instances(inst);
+    ASSERT_EQ(expanded.triangle_count(), flat.triangle_count());
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < flat.positions.size(); ++i)
+        worst = std::max(worst, length(expanded.positions[i] - flat.positions[i]));
+    std::printf("largest vertex distance, flatten_instances vs load_gltf: %g\n", static_cast<double>(worst));
+    EXPECT_LT(worst, 1e-5f);
+}
+
+TEST(GltfInstanced, CycleAndBadMeshIndexNameTheFile)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.nodes = R"([{"mesh": 0, "children": [1]}, {"children": [0]}])";
+    expect_input_error([&] { load_gltf_instanced(write_gltf(dir, doc)); }, {"tri.gltf", "node 0", "reached twice"});
+    doc.nodes = R"([{"mesh": 0}, {"mesh": 5}])";
+    doc.scenes = R"([{"nodes": [0, 1]}])";
+    expect_input_error([&] { load_gltf_instanced(write_gltf(dir, doc)); }, {"tri.gltf", "mesh index 5"});
 }
 
 TEST(GltfErrors, TruncatedGlbEveryLength)

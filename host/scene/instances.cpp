@@ -1,0 +1,106 @@
+#include "host/scene/instances.h"
+
+#include <cmath>
+#include <string>
+
+#include "host/util/error.h"
+
+namespace gc {
+namespace {
+
+bool is_finite_affine(const glm::mat4& m)
+{
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return m[0][3] == 0.0f && m[1][3] == 0.0f && m[2][3] == 0.0f && m[3][3] == 1.0f;
+}
+
+// (m0 x + m1 y) + m2 z + m3 w per coordinate: the order gc_instance.h uses on the device.
+glm::vec3 apply(const glm::mat4& m, const glm::vec3& p, float w)
+{
+    glm::vec3 out;
+    for (int r = 0; r < 3; ++r) out[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r] * w;
+    return out;
+}
+
+Normal3 unit_or_zero(const glm::vec3& v)
+{
+    const float len = glm::length(v);
+    return len > 0.0f && std::isfinite(len) ? Normal3(v / len) : Normal3(0.0f, 0.0f, 0.0f);
+}
+
+}  // namespace
+
+std::size_t InstancedScene::instanced_triangle_count() const
+{
+    std::size_t total = 0;
+    for (const Instance& inst : instances)
+        if (inst.mesh < mesh_ranges.size()) total += mesh_ranges[inst.mesh].triangle_count;
+    return total;
+}
+
+void validate_instances(const InstancedScene& scene)
+{
+    const std::string file = scene.meshes.name_for_messages();
+    const std::size_t tris = scene.meshes.triangle_count();
+    for (std::size_t m = 0; m < scene.mesh_ranges.size(); ++m) {
+        const MeshRange& r = scene.mesh_ranges[m];
+        if (r.triangle_count == 0 || std::size_t{r.first_triangle} + r.triangle_count > tris)
+            throw InputError(file + ": mesh " + std::to_string(m) + " spans triangles " +
+                             std::to_string(r.first_triangle) + " + " + std::to_string(r.triangle_count) +
+                             ", but the scene has " + std::to_string(tris) + " (a mesh must be non-empty and inside)");
+    }
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        if (inst.mesh >= scene.mesh_ranges.size())
+            throw InputError(file + ": instance " + std::to_string(i) + " refers to mesh " + std::to_string(inst.mesh) +
+                             ", but there are " + std::to_string(scene.mesh_ranges.size()) + " meshes");
+        const double det = glm::determinant(glm::dmat3(glm::dmat4(inst.object_to_world)));
+        if (!is_finite_affine(inst.object_to_world) || !(std::fabs(det) > 0.0) || !std::isfinite(det))
+            throw InputError(file + ": instance " + std::to_string(i) +
+                             " has a transform that is not a finite, invertible affine map");
+    }
+}
+
+Scene flatten_instances(const InstancedScene& scene)
+{
+    validate_instances(scene);
+    const Scene& src = scene.meshes;
+    Scene out;
+    out.materials = src.materials;
+    out.textures = src.textures;
+    out.point_lights = src.point_lights;
+    out.camera = src.camera;
+    out.source_path = src.source_path;
+    const std::size_t total = scene.instanced_triangle_count();
+    out.positions.reserve(3 * total);
+    out.normals.reserve(3 * total);
+    out.material_ids.reserve(total);
+    out.has_vertex_normals.reserve(total);
+    if (!src.uvs.empty()) out.uvs.reserve(3 * total);
+    if (!src.tangents.empty()) out.tangents.reserve(3 * total);
+    for (const Instance& inst : scene.instances) {
+        const MeshRange& r = scene.mesh_ranges[inst.mesh];
+        const glm::mat4& m = inst.object_to_world;
+        const glm::mat3 normal_map = glm::transpose(glm::mat3(world_to_object(m)));
+        for (std::uint32_t t = r.first_triangle; t < r.first_triangle + r.triangle_count; ++t) {
+            for (int c = 0; c < 3; ++c) {
+                const std::size_t k = 3 * std::size_t{t} + c;
+                out.positions.push_back(Point3(apply(m, src.positions[k].glm(), 1.0f)));
+                out.normals.push_back(unit_or_zero(normal_map * src.normals[k].glm()));
+                if (!src.uvs.empty()) out.uvs.push_back(src.uvs[k]);
+                if (!src.tangents.empty()) {
+                    const glm::vec4 tg = src.tangents[k];
+                    const Normal3 dir = unit_or_zero(apply(m, glm::vec3(tg), 0.0f));
+                    out.tangents.push_back(glm::vec4(dir.x, dir.y, dir.z, tg.w));
+                }
+            }
+            out.material_ids.push_back(src.material_ids[t]);
+            out.has_vertex_normals.push_back(src.has_vertex_normals[t]);
+        }
+    }
+    return out;
+}
+
+}  // namespace gc
