@@ -949,8 +949,12 @@ TEST(GltfMaterialLayers, ClearCoatSampleModel)
             EXPECT_EQ(m.layers.clearcoat, 1.0f);
             EXPECT_NEAR(m.layers.clearcoat_roughness, 0.03f, 1e-7f);
         }
-        if (m.name == "Partial_Coated") EXPECT_GE(m.layers.clearcoat_texture.texture, 0);
-        if (m.name == "RoughVariations_Coated") EXPECT_GE(m.layers.clearcoat_roughness_texture.texture, 0);
+        if (m.name == "Partial_Coated") {
+            EXPECT_GE(m.layers.clearcoat_texture.texture, 0);
+        }
+        if (m.name == "RoughVariations_Coated") {
+            EXPECT_GE(m.layers.clearcoat_roughness_texture.texture, 0);
+        }
     }
     EXPECT_EQ(coated, 6);
     EXPECT_NE(err.find("clearcoatNormalTexture is ignored"), std::string::npos) << err;
