@@ -66,14 +66,18 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
         m.pbr.x *= mr.z;
         m.pbr.y *= mr.y;
     }
-    /* The KHR_materials_* layers' textures (channels as their specifications give them). */
-    if (GC_USE_TEXTURES != 0 && GC_USE_CLEARCOAT != 0 && (m.flags & GC_MATF_CLEARCOAT) != 0u) {
+    /* The KHR_materials_* layers' textures (channels as their specifications give them);
+     * compiled in only where the scene has the layer (#if: two constants in an && warn). */
+#if GC_USE_TEXTURES != 0 && GC_USE_CLEARCOAT != 0
+    if ((m.flags & GC_MATF_CLEARCOAT) != 0u) {
         if (m.coat_texture != GC_INVALID)
             m.coat.x *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.coat_texture), uv.x, uv.y).x;
         if (m.coat_roughness_texture != GC_INVALID)
             m.coat.y *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.coat_roughness_texture), uv.x, uv.y).y;
     }
-    if (GC_USE_TEXTURES != 0 && GC_USE_SPECULAR != 0 && (m.flags & GC_MATF_SPECULAR) != 0u) {
+#endif
+#if GC_USE_TEXTURES != 0 && GC_USE_SPECULAR != 0
+    if ((m.flags & GC_MATF_SPECULAR) != 0u) {
         if (m.specular_texture != GC_INVALID)
             m.coat.w *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.specular_texture), uv.x, uv.y).w;
         if (m.specular_color_texture != GC_INVALID) {
@@ -81,7 +85,9 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
             m.specular = make_float4(m.specular.x * c.x, m.specular.y * c.y, m.specular.z * c.z, m.specular.w);
         }
     }
-    if (GC_USE_TEXTURES != 0 && GC_USE_SHEEN != 0 && (m.flags & GC_MATF_SHEEN) != 0u) {
+#endif
+#if GC_USE_TEXTURES != 0 && GC_USE_SHEEN != 0
+    if ((m.flags & GC_MATF_SHEEN) != 0u) {
         if (m.sheen_color_texture != GC_INVALID) {
             const float4 c = gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.sheen_color_texture), uv.x, uv.y);
             m.sheen = make_float4(m.sheen.x * c.x, m.sheen.y * c.y, m.sheen.z * c.z, m.sheen.w);
@@ -89,6 +95,7 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
         if (m.sheen_roughness_texture != GC_INVALID)
             m.sheen.w *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.sheen_roughness_texture), uv.x, uv.y).w;
     }
+#endif
     return m;
 }
 
