@@ -19,7 +19,7 @@ from __future__ import annotations
 import os as _os
 from dataclasses import dataclass as _dataclass
 from pathlib import Path as _Path
-from typing import Any, Callable, Dict, Iterator, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _geocold
 
@@ -246,10 +246,13 @@ class Params(Mapping[str, Any]):
     """Everything editable in the scene as one flat name -> value view, Mitsuba style:
     ``"materials/<name>/base_color"``, ``"materials/<name>/roughness"``, ...,
     ``"camera/look_from"``, ``"camera/look_at"``, ``"camera/up"``, ``"camera/fov"``,
-    ``"camera/aperture"``, ``"camera/focus_distance"``.
+    ``"camera/aperture"``, ``"camera/focus_distance"``, and the texels of the textures that can be
+    differentiated, ``"textures/<i>/texels"`` ((h, w, 4) float32, linear; once set, the texture
+    is stored as linear floats).
 
     ``params[key] = value`` edits the scene as the attribute would; ``params.update({...})``
-    sets several."""
+    sets several. :meth:`differentiable` lists what :meth:`Renderer.backward` can
+    differentiate, with shapes."""
 
     def __init__(self, scene: "Scene"):
         self._scene = scene
@@ -263,9 +266,29 @@ class Params(Mapping[str, Any]):
                 yield f"materials/{name}/{f}"
         for f in _CAMERA_FIELDS:
             yield f"camera/{f}"
+        yield from self._texel_keys()
 
     def __len__(self) -> int:
-        return len(self._scene.materials) * len(_MATERIAL_FIELDS) + len(_CAMERA_FIELDS)
+        return len(self._scene.materials) * len(_MATERIAL_FIELDS) + len(_CAMERA_FIELDS) + len(self._texel_keys())
+
+    def differentiable(self) -> Dict[str, Tuple[int, ...]]:
+        """Every parameter :meth:`Renderer.backward` differentiates, name -> shape:
+        ``materials/<m>/base_color`` (3), ``emission`` (3, materials that emit), ``specular``
+        (3), ``phong_exponent`` (1), ``metallic`` (1), ``roughness`` (1);
+        ``environment/radiance`` (3, the renderer's environment); ``textures/<i>/texels``
+        (h, w, 4). ``<m>`` is the material's name where unique, else its index. Geometry, the
+        camera and indices of refraction are not differentiable."""
+        return {name: tuple(shape) for name, shape in self._scene._core.param_shapes()}
+
+    def _texel_keys(self) -> List[str]:
+        return [name for name, _ in self._scene._core.param_shapes() if name.startswith("textures/")]
+
+    @staticmethod
+    def _texture_index(key: str) -> Optional[int]:
+        parts = key.split("/")
+        if len(parts) == 3 and parts[0] == "textures" and parts[2] == "texels" and parts[1].isdigit():
+            return int(parts[1])
+        return None
 
     def _target(self, key: str) -> Tuple[Any, str]:
         parts = key.split("/")
@@ -278,10 +301,18 @@ class Params(Mapping[str, Any]):
         raise KeyError(f"{self._scene.path}: no parameter {key!r}")
 
     def __getitem__(self, key: str) -> Any:
+        index = self._texture_index(key)
+        if index is not None:
+            return self._scene._core.texels(index)
         obj, field = self._target(key)
         return getattr(obj, field)
 
     def __setitem__(self, key: str, value: Any) -> None:
+        index = self._texture_index(key)
+        if index is not None:
+            import numpy as np
+            self._scene._core.set_texels(index, np.ascontiguousarray(value, dtype=np.float32))
+            return
         obj, field = self._target(key)
         setattr(obj, field, value)
 
@@ -291,7 +322,9 @@ class Params(Mapping[str, Any]):
             self[k] = v
 
     def __repr__(self) -> str:
-        return "Params({" + ", ".join(f"{k!r}: {self[k]!r}" for k in self) + "})"
+        def short(k: str) -> str:
+            return f"array{tuple(self[k].shape)}" if self._texture_index(k) is not None else repr(self[k])
+        return "Params({" + ", ".join(f"{k!r}: {short(k)}" for k in self) + "})"
 
 
 class Scene:
@@ -489,6 +522,24 @@ class Renderer:
         from the cache: ``program_from_cache``), ``program_builds`` (programs rebuilt since
         construction, by edits that changed the kernel features), ``render_seconds``."""
         return self._core.info()
+
+    def backward(self, loss_grad: Any, params: Sequence[str], spp: int = 4, seed: int = 1) -> Dict[str, Any]:
+        """Gradients of a loss of this renderer's image with respect to scene parameters
+        (:meth:`Params.differentiable`), by path replay backpropagation on the renderer's device.
+
+        ``loss_grad``: d loss / d image, (H, W, 3 or 4) (alpha ignored), e.g.
+        ``2 * (img[..., :3] - target[..., :3]) / img[..., :3].size`` for the MSE. ``spp`` samples
+        per pixel with ``seed``: use a seed other than the image's for an unbiased gradient.
+        Returns name -> float32 array in the parameter's shape. The sums are exact integers,
+        so the same call gives the same bits every time on a device. Path integrator only;
+        an unknown or non-differentiable name raises :class:`ArgumentError` saying why."""
+        import numpy as np
+
+        names = [params] if isinstance(params, str) else [str(p) for p in params]
+        grad = np.ascontiguousarray(loss_grad, dtype=np.float32)
+        flat = self._core.backward(grad, names, int(spp), int(seed))
+        shapes = self._scene.params.differentiable()
+        return {name: flat[name].reshape(shapes.get(name, flat[name].shape)) for name in names}
 
     def metadata(self) -> Dict[str, Any]:
         """The metadata :func:`write` records for this renderer's film."""

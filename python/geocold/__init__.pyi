@@ -1,7 +1,7 @@
 """geocold: the geocold-cl path tracer from Python (see __init__.py for the documentation)."""
 
 import os
-from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -78,7 +78,10 @@ class Camera:
         """Changes several fields at once (checked together)."""
 
 class Params(Mapping[str, Any]):
-    """Everything editable as a flat view: "materials/<name>/<factor>", "camera/<field>"."""
+    """Everything editable as a flat view: "materials/<name>/<factor>", "camera/<field>",
+    "textures/<i>/texels"."""
+    def differentiable(self) -> Dict[str, Tuple[int, ...]]:
+        """What Renderer.backward differentiates: name -> shape."""
     def __getitem__(self, key: str) -> Any: ...
     def __setitem__(self, key: str, value: Any) -> None: ...
     def __iter__(self) -> Iterator[str]: ...
@@ -133,6 +136,8 @@ class Renderer:
     def sample_count(self) -> int: ...
     @property
     def info(self) -> Dict[str, Any]: ...
+    def backward(self, loss_grad: Any, params: Sequence[str], spp: int = ..., seed: int = ...) -> Dict[str, Any]:
+        """d loss / d parameter from d loss / d image, by path replay backpropagation; deterministic."""
     def metadata(self) -> Dict[str, Any]: ...
 
 def render_frame(scene: Scene, devices: Union[str, List[Union[str, int, Device]]] = ..., spp: int = ..., *,

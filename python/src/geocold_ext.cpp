@@ -37,9 +37,11 @@
 #include "host/render/chunks.h"
 #include "host/render/device_scene.h"
 #include "host/render/environment.h"
+#include "host/render/gradients.h"
 #include "host/render/multi_device.h"
 #include "host/render/render_loop.h"
 #include "host/render/renderer.h"
+#include "host/render/scene_params.h"
 #include "host/render/session.h"
 #include "host/scene/camera_framing.h"
 #include "host/util/error.h"
@@ -124,6 +126,7 @@ struct SceneState {
     std::string path;
     std::atomic<std::uint64_t> material_revision{0};
     std::atomic<std::uint64_t> camera_revision{0};
+    std::atomic<std::uint64_t> texture_revision{0};  // texels set (textures/<i>/texels)
     double load_seconds = 0.0;
     double bvh_seconds = 0.0;
     std::mutex mutex;  // guards the host scene against renderers uploading it on other threads
@@ -134,6 +137,47 @@ struct SceneState {
         return prepared.scene.materials[i];
     }
 };
+
+// The differentiable parameters (scene_params.h): (name, shape) in the library's order.
+std::vector<std::tuple<std::string, std::vector<std::size_t>>> param_shapes(SceneState& s)
+{
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    std::vector<std::tuple<std::string, std::vector<std::size_t>>> out;
+    for (const ParamInfo& p : list_params(s.prepared.scene)) out.emplace_back(p.name, p.shape);
+    return out;
+}
+
+Texture& differentiable_texture(SceneState& s, std::uint32_t index)
+{
+    // resolve_param says why a texture is not a parameter (out of range, or a normal map).
+    resolve_param(s.prepared.scene, "textures/" + std::to_string(index) + "/texels");
+    return s.prepared.scene.textures[index];
+}
+
+FloatArray get_texels(SceneState& s, std::uint32_t index)
+{
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    const Texture& t = differentiable_texture(s, index);
+    return array_from<float, float>(texels_linear(t), {size_t(t.height), size_t(t.width), 4});
+}
+
+// Stores the texture as linear floats from now on (Texture::linear); renderers upload it at
+// their next render.
+void set_texels(SceneState& s, std::uint32_t index, nb::ndarray<const float, nb::c_contig, nb::device::cpu> texels)
+{
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    Texture& t = differentiable_texture(s, index);
+    if (texels.ndim() != 3 || texels.shape(0) != t.height || texels.shape(1) != t.width || texels.shape(2) != 4)
+        throw UsageError("textures/" + std::to_string(index) + "/texels must be (" + std::to_string(t.height) + ", " +
+                         std::to_string(t.width) + ", 4) float32");
+    const float* v = texels.data();
+    const std::size_t count = std::size_t(t.width) * t.height;
+    const std::string what = "textures/" + std::to_string(index) + "/texels";
+    for (std::size_t i = 0; i < 4 * count; ++i) check_finite(what.c_str(), v[i]);
+    t.linear.resize(count);
+    for (std::size_t i = 0; i < count; ++i) t.linear[i] = glm::vec4(v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]);
+    ++s.texture_revision;
+}
 
 std::shared_ptr<SceneState> load(const std::string& path, int gltf_scene, bool phong_as_lambert)
 {
@@ -485,10 +529,45 @@ public:
 
     void clear() { m_renderer->clear(); }
 
+    // d loss / d parameter (gradients.h) for a loss of this renderer's image, given d loss / d
+    // each pixel's mean as an (H, W, 3 or 4) array; flat float32 arrays by name.
+    nb::dict backward(nb::ndarray<const float, nb::c_contig, nb::device::cpu> loss_grad,
+                      const std::vector<std::string>& params, std::uint32_t spp, std::uint32_t seed)
+    {
+        const std::size_t w = m_settings.width, h = m_settings.height;
+        if (loss_grad.ndim() != 3 || loss_grad.shape(0) != h || loss_grad.shape(1) != w ||
+            (loss_grad.shape(2) != 3 && loss_grad.shape(2) != 4))
+            throw UsageError("backward: loss_grad must be (" + std::to_string(h) + ", " + std::to_string(w) +
+                             ", 3 or 4) float32, the image's shape");
+        if (spp == 0) throw UsageError("backward: spp must be at least 1");
+        const std::size_t channels = loss_grad.shape(2);
+        std::vector<glm::vec4> grad(w * h);
+        const float* g = loss_grad.data();
+        for (std::size_t i = 0; i < grad.size(); ++i) {
+            grad[i] = glm::vec4(g[i * channels], g[i * channels + 1], g[i * channels + 2], 0.0f);
+            for (int c = 0; c < 3; ++c) check_finite("backward: loss_grad", grad[i][c]);
+        }
+        Gradients result;
+        {
+            nb::gil_scoped_release release;
+            follow_edits();
+            if (!m_adjoint) m_adjoint = std::make_unique<PathAdjoint>(*m_renderer);
+            const std::lock_guard<std::mutex> lock(m_state->mutex);
+            result = m_adjoint->backward(*m_renderer, m_state->prepared.scene, grad, params, spp, seed);
+        }
+        nb::dict out;
+        for (auto& [name, values] : result) {
+            const size_t n = values.size();
+            out[nb::str(name.c_str())] = array_from<float, float>(std::move(values), {n});
+        }
+        return out;
+    }
+
     // 0 after a scene edit not yet rendered: the next render restarts the film.
     std::uint32_t sample_count() const
     {
-        if (m_state->material_revision != m_material_revision || m_state->camera_revision != m_camera_revision)
+        if (m_state->material_revision != m_material_revision || m_state->camera_revision != m_camera_revision ||
+            m_state->texture_revision != m_texture_revision)
             return 0;
         return m_renderer->samples_done();
     }
@@ -521,6 +600,11 @@ private:
     {
         // Called without the GIL: the setters hold the GIL while they take the mutex.
         const std::lock_guard<std::mutex> lock(m_state->mutex);
+        if (m_state->texture_revision != m_texture_revision) {
+            m_scene->update_textures(*m_context, m_state->prepared.scene);  // the materials too
+            m_texture_revision = m_state->texture_revision;
+            m_material_revision = m_state->material_revision;
+        }
         if (m_state->material_revision != m_material_revision) {
             m_scene->update_materials(*m_context, m_state->prepared.scene);
             m_material_revision = m_state->material_revision;
@@ -540,6 +624,8 @@ private:
     const cl::Program* m_program = nullptr;
     std::uint64_t m_material_revision = 0;
     std::uint64_t m_camera_revision = 0;
+    std::uint64_t m_texture_revision = 0;
+    std::unique_ptr<PathAdjoint> m_adjoint;  // built at the first backward
     std::uint32_t m_program_builds = 0;  // programs built after the first (kernel feature changes)
     double m_upload_seconds = 0.0;
     double m_seconds = 0.0;
@@ -678,7 +764,10 @@ NB_MODULE(_geocold, m)
         .def("material", [](SceneState& s, std::size_t i) { return material_fields(s.material(i)); })
         .def("set_material", &set_material_field)
         .def("camera", [](const SceneState& s) { return camera_fields(s.prepared.camera); })
-        .def("set_camera", &set_camera);
+        .def("set_camera", &set_camera)
+        .def("param_shapes", &param_shapes)
+        .def("texels", &get_texels)
+        .def("set_texels", &set_texels);
 
     nb::class_<PyRenderer>(m, "RendererCore")
         .def(nb::init<std::shared_ptr<SceneState>, const std::string&, const std::string&, const std::string&, int, int,
@@ -689,6 +778,7 @@ NB_MODULE(_geocold, m)
         .def("variance", &PyRenderer::variance)
         .def("sums", &PyRenderer::sums)
         .def("clear", &PyRenderer::clear)
+        .def("backward", &PyRenderer::backward, "loss_grad"_a, "params"_a, "spp"_a, "seed"_a)
         .def_prop_ro("sample_count", &PyRenderer::sample_count)
         .def("info", &PyRenderer::info);
 }

@@ -42,3 +42,21 @@ def test_edit_rerender_within_ten_percent_of_the_set_up(device, tmp_path):
     out = run("edit_rerender.py", "--device", device, "--res", "128", "--cold", "--max-ratio", "0.10",
               cwd=tmp_path)
     assert "programs rebuilt: 0" in out
+
+
+def test_optimize_wall_colour_recovers_the_red_wall(device, tmp_path):
+    out = run("optimize_wall_colour.py", "--device", device, "--res", "64", "--target-spp", "64", "-o", "wall",
+              cwd=tmp_path)
+    error = float(out.split("colour error")[1].split()[0])
+    print(f"  colour error {error:.6f} (sum over RGB of squared differences; limit 0.005)")
+    assert error <= 0.005
+    assert (tmp_path / "wall-loss.png").exists() and (tmp_path / "wall-images.png").exists()
+
+
+def test_optimize_texture_brings_the_renders_to_the_target(device, tmp_path):
+    out = run("optimize_texture.py", "--device", device, "--res", "64", "--iterations", "40", "-o", "tex",
+              cwd=tmp_path)
+    before, after = (float(v) for v in out.split("image error (RMS): before")[1].replace(", after", "").split()[:2])
+    print(f"  image error (RMS over three views) before {before:.5f}, after {after:.5f} (limit: after <= 0.3 x before)")
+    assert after <= 0.3 * before
+    assert (tmp_path / "tex-loss.png").exists() and (tmp_path / "tex-images.png").exists()
