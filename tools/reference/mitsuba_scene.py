@@ -130,11 +130,11 @@ def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
     return mesh
 
 
-def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0) -> mi.Scene:
+def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path") -> mi.Scene:
     width, height = camera["res"]
     scene = {
         "type": "scene",
-        "integrator": {"type": "path", "max_depth": int(max_depth)},
+        "integrator": {"type": integrator, "max_depth": int(max_depth)},
         "sensor": {
             # Mitsuba's thinlens: the plane in focus at focus_distance along the view axis, as
             # geocold-cl's gc_camera_sample.
