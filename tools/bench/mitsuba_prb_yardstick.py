@@ -108,11 +108,16 @@ def mitsuba_setup(view, side: int):
     if not keys or missing:
         fail(f"no diffuse reflectance in Mitsuba's scene for {sorted(names)} ({missing or 'no mesh'})")
     params.keep(keys)
-    return scene, integrator, params, keys
+    first = view["params"][0].split("/")[1]
+    # The first parameter's BSDFs first, so that its gradient is the sum over keys[:first_keys].
+    keys.sort(key=lambda k: groups[int(k[5:8])].material.name != first)
+    first_keys = sum(groups[int(k[5:8])].material.name == first for k in keys)
+    return scene, integrator, params, keys, first_keys
 
 
-def mitsuba_iteration(scene, integrator, params, keys, spp: int, seed: int) -> float:
-    """Seconds of one render + backward, to the end of the device's work."""
+def mitsuba_iteration(scene, integrator, params, keys, first_keys: int, spp: int, seed: int):
+    """(seconds of one render + backward, to the end of the device's work; the gradient of the
+    first parameter, summed over its Mitsuba BSDFs, as a list of RGB)."""
     import drjit as dr
     import mitsuba as mi
 
@@ -127,9 +132,10 @@ def mitsuba_iteration(scene, integrator, params, keys, spp: int, seed: int) -> f
     dr.eval(*grads)
     dr.sync_thread()
     seconds = time.perf_counter() - start
+    first = [sum(float(dr.grad(params[k])[c][0]) for k in keys[:first_keys]) for c in range(3)]
     for k in keys:
         dr.set_grad(params[k], 0)
-    return seconds
+    return seconds, first
 
 
 def main(argv=None) -> int:
@@ -152,13 +158,17 @@ def main(argv=None) -> int:
     device, our_sizes = (None, []) if args.no_ours else ours(args)
     results = []
     for i, (side, spp) in enumerate(args.size_list):
-        scene, integrator, params, keys = mitsuba_setup(view, side)
-        first = mitsuba_iteration(scene, integrator, params, keys, spp, 0)
-        times = [mitsuba_iteration(scene, integrator, params, keys, spp, 1 + r) for r in range(args.repeats)]
+        scene, integrator, params, keys, first_keys = mitsuba_setup(view, side)
+        first, _ = mitsuba_iteration(scene, integrator, params, keys, first_keys, spp, 0)
+        runs = [mitsuba_iteration(scene, integrator, params, keys, first_keys, spp, 1 + r) for r in range(args.repeats)]
+        times = [t for t, _ in runs]
+        grad = runs[-1][1]
         theirs = statistics.median(times)
-        row = {"side": side, "spp": spp, "mitsuba_first_s": first, "mitsuba_median_s": theirs, "mitsuba_s": times}
+        row = {"side": side, "spp": spp, "mitsuba_first_s": first, "mitsuba_median_s": theirs, "mitsuba_s": times,
+               "mitsuba_gradient_first": [view["params"][0], grad]}
         line = (f"  {side}x{side} spp {spp}+{spp}: Mitsuba first iteration {first:.3f} s, iteration {theirs:.4f} s "
-                f"(median of {len(times)}, {min(times):.4f}-{max(times):.4f})")
+                f"(median of {len(times)}, {min(times):.4f}-{max(times):.4f}), d/d {view['params'][0]} = "
+                f"({grad[0]:.4g}, {grad[1]:.4g}, {grad[2]:.4g})")
         if our_sizes:
             mine = our_sizes[i]["iteration_median_s"]
             row.update({"ours_median_s": mine, "ours_programs_s": our_sizes[i]["programs_s"],
