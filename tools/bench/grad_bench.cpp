@@ -253,15 +253,15 @@ json time_sizes(const cl::Context& context, const std::shared_ptr<const DeviceSc
         }
         const double med = median(times);
         const auto [lo, hi] = std::minmax_element(times.begin(), times.end());
-        const std::vector<float>& left = g.begin()->second;
+        const std::vector<float>& left = g.at(params.front());
         std::printf("  %4dx%-4d spp %2d+%-2d depth %2d  programs %7.3f s  first iteration %7.3f s  iteration "
                     "%8.4f s (median of %d, %.4f-%.4f)  loss %.5f  d/d %s = (%.4g, %.4g, %.4g)\n",
                     size.side, size.side, size.spp, size.spp, o.depth, build_s, first_s, med, o.repeats, *lo, *hi,
-                    loss, g.begin()->first.c_str(), left[0], left[1], left[2]);
+                    loss, params.front().c_str(), left[0], left[1], left[2]);
         std::fflush(stdout);
         out.push_back({{"side", size.side}, {"spp", size.spp}, {"depth", o.depth}, {"programs_s", build_s},
                        {"first_iteration_s", first_s}, {"iteration_median_s", med}, {"iteration_s", times},
-                       {"loss", loss}, {"params", params.size()}, {"gradient_first", {g.begin()->first, left}}});
+                       {"loss", loss}, {"params", params.size()}, {"gradient_first", {params.front(), left}}});
     }
     return out;
 }

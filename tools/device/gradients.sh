@@ -16,12 +16,14 @@
 # build's output to $OUT/gradients-build.log, the Mitsuba comparisons' JSON to
 # $OUT/gradients-prb-*.json. The bare preset leaves the bench tools out: GEOCOLD_BUILD_BENCH=ON
 # adds them (as tools/bench/gpu.sh does); Embree is not needed by geocold-grad-bench.
-# Usage: tools/device/gradients.sh [extra geocold-grad-bench args, e.g. --repeats 9]
+# Usage: tools/device/gradients.sh [extra geocold-grad-bench args, e.g. --threads 8]
 # BUILD_DIR overrides build/bare. To rehearse it off the node: GEOCOLD_GRAD_NO_BUILD=1 (use
 # BUILD_DIR's geocold-grad-bench and gradient_test as they are), GEOCOLD_GRAD_GPU=cpu (the
 # device spec that stands for the GPU; Mitsuba then runs llvm_ad_rgb), PYTHON (a Python with
 # Mitsuba, where .deps/mitsuba is not carried), GEOCOLD_GRAD_SIZES and
-# GEOCOLD_GRAD_MEMORY_SIZE (smaller sizes than 128:4,512:16 and 512:16).
+# GEOCOLD_GRAD_MEMORY_SIZE (smaller sizes than 128:4,512:16 and 512:16). GEOCOLD_GRAD_REPEATS
+# (default 5) is both sides' timed iterations; extra arguments go to geocold-grad-bench's own
+# speed steps.
 # Exit status: the first failing step's, after every step.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -33,6 +35,7 @@ build=${BUILD_DIR:-build/bare}
 gpu=${GEOCOLD_GRAD_GPU:-gpu}
 py=${PYTHON:-python3}
 sizes=${GEOCOLD_GRAD_SIZES:-128:4,512:16}
+repeats=${GEOCOLD_GRAD_REPEATS:-5}
 memory_size=${GEOCOLD_GRAD_MEMORY_SIZE:-512:16}
 variant=cuda_ad_rgb
 [ "$gpu" = gpu ] || variant=llvm_ad_rgb
@@ -85,13 +88,13 @@ fi
 if "$py" -c "import mitsuba" 2> /dev/null; then
     for which in leftWall walls; do
         step "speed-$which-$gpu-vs-prb" "$py" tools/bench/mitsuba_prb_yardstick.py --grad-bench "$bench" --device "$gpu" \
-            --variant "$variant" --sizes "$sizes" --params "$which" --json "$out/gradients-prb-$which.json"
+            --variant "$variant" --sizes "$sizes" --repeats "$repeats" --params "$which" --json "$out/gradients-prb-$which.json"
     done
 else
     echo "== no Mitsuba (GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh carries it): ours alone" >> "$log"
-    step "speed-$gpu" "$bench" --device "$gpu" --sizes "$sizes" --no-memory "$@"
+    step "speed-$gpu" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 fi
-step speed-pocl "$bench" --device cpu --sizes "$sizes" --no-memory "$@"
+step speed-pocl "$bench" --device cpu --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 
 # 2. Memory: our count, and nvidia-smi's used memory (the peak of 50 ms samples less the
 # used memory before the process starts) per depth.
@@ -119,7 +122,7 @@ smi_peak 64
 
 # 3. The gradient tests on each device.
 for d in $gpu cpu; do
-    step "gradient_test-$d" env GEOCOLD_TEST_DEVICE=$d ctest --test-dir "$build_abs" --output-on-failure -R '^gradient_test$'
+    step "gradient_test-$d" env GEOCOLD_TEST_DEVICE=$d "$build_abs/tests/render/gradient_test" --gtest_brief=1
 done
 
 # 4. Determinism and the two devices' difference, at both sizes.
