@@ -30,6 +30,7 @@ struct KernelFeatures {
     bool clearcoat = true;  // the KHR_materials_* layers of GC_MAT_PBR (GC_MATF_CLEARCOAT, ...)
     bool specular = true;
     bool sheen = true;
+    bool rough_transmission = true;  // GC_MATF_ROUGH_TRANSMISSION
     std::uint32_t material_types = 0xffffffffu;  // bit t: some material has type t (GC_MAT_*)
 
     bool operator==(const KernelFeatures&) const = default;

@@ -187,6 +187,9 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         const bool pbr = m.type == MaterialType::Pbr;
         d.flags |= (pbr && l.clearcoat_on ? GC_MATF_CLEARCOAT : 0u) | (pbr && l.specular_on ? GC_MATF_SPECULAR : 0u) |
                    (pbr && l.sheen_on ? GC_MATF_SHEEN : 0u);
+        // Roughness 0 keeps the thin-walled delta lobe (and its program and bits); a
+        // metallicRoughness texture only scales the factor, so a factor of 0 stays smooth.
+        if (pbr && m.transmission > 0.0f && m.roughness > 0.0f) d.flags |= GC_MATF_ROUGH_TRANSMISSION;
         if (pbr && l.specular_on) d.specular = v4(l.specular_color, d.specular.w);
         d.coat = {l.clearcoat, l.clearcoat_roughness, 0.0f, l.specular};
         d.sheen = v4(l.sheen_color, l.sheen_roughness);

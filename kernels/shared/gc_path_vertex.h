@@ -185,6 +185,10 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && gc_material_is(m, GC_MAT_DIELECTRIC)) {
         const float eta = gc_dielectric_eta(m, wo);
         eta_scale *= eta * eta;
+    } else if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && (bs.flags & GC_BSDF_SPECULAR) == 0u &&
+               gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m)) {
+        const float eta = gc_pbr_transmission_eta(m, gc_bsdf_side(wo));
+        eta_scale *= eta * eta;
     }
     bool alive = bs.flags != 0u && (beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f);
     if (alive && path.depth >= params.rr_depth) {

@@ -159,6 +159,7 @@ GC_STRUCT(GcTriangleAttribs) {
 #define GC_MATF_CLEARCOAT 8u  /* KHR_materials_clearcoat: coat, coat_texture, coat_roughness_texture */
 #define GC_MATF_SPECULAR 16u  /* KHR_materials_specular: specular.rgb colour, coat.w factor */
 #define GC_MATF_SHEEN 32u     /* KHR_materials_sheen: sheen, sheen_*_texture */
+#define GC_MATF_ROUGH_TRANSMISSION 64u /* KHR_materials_transmission with roughness > 0: GGX refraction */
 
 GC_STRUCT(GcMaterial) {
     float4 albedo;   /* rgb: diffuse reflectance / base color (linear); a: opacity */
