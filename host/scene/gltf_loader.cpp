@@ -483,6 +483,8 @@ private:
         }
         if (const auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end())
             read_specular(it->second, context, resolve, layers);
+        if (const auto it = m.extensions.find("KHR_materials_volume"); it != m.extensions.end())
+            read_volume(it->second, context, layers);
     }
 
     // A textureInfo's KHR_texture_transform (identity without one). The spec gives no
