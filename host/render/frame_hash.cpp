@@ -79,9 +79,10 @@ std::uint64_t scene_content_hash(const Scene& scene)
         if (l != PbrLayers{}) {
             h.add_field("layers");
             for (float v : {l.clearcoat, l.clearcoat_roughness, l.specular, l.specular_color.x, l.specular_color.y,
-                            l.specular_color.z, l.sheen_color.x, l.sheen_color.y, l.sheen_color.z, l.sheen_roughness})
+                            l.specular_color.z, l.sheen_color.x, l.sheen_color.y, l.sheen_color.z, l.sheen_roughness,
+                            l.attenuation_color.x, l.attenuation_color.y, l.attenuation_color.z, l.attenuation_distance})
                 add_value(h, v);
-            for (bool on : {l.clearcoat_on, l.specular_on, l.sheen_on}) add_value(h, std::uint8_t(on));
+            for (bool on : {l.clearcoat_on, l.specular_on, l.sheen_on, l.volume_on}) add_value(h, std::uint8_t(on));
             for (const TextureRef* r : {&l.clearcoat_texture, &l.clearcoat_roughness_texture, &l.specular_texture,
                                         &l.specular_color_texture, &l.sheen_color_texture, &l.sheen_roughness_texture}) {
                 add_value(h, r->texture);

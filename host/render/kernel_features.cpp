@@ -33,7 +33,7 @@ KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::
     if (set == KernelFeatureSet::All) return {};
     KernelFeatures f;
     f.textures = f.normal_maps = f.alpha_mask = f.alpha_blend = false;
-    f.clearcoat = f.specular = f.sheen = false;
+    f.clearcoat = f.specular = f.sheen = f.rough_transmission = f.volume = false;
     f.material_types = 0u;
     for (const dev::GcMaterial& m : materials) {
         f.textures = f.textures || has_texture(m);
@@ -45,6 +45,8 @@ KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::
         f.clearcoat = f.clearcoat || (m.flags & GC_MATF_CLEARCOAT) != 0u;
         f.specular = f.specular || (m.flags & GC_MATF_SPECULAR) != 0u;
         f.sheen = f.sheen || (m.flags & GC_MATF_SHEEN) != 0u;
+        f.rough_transmission = f.rough_transmission || (m.flags & GC_MATF_ROUGH_TRANSMISSION) != 0u;
+        f.volume = f.volume || (m.flags & GC_MATF_VOLUME) != 0u;
         // A type beyond the mask's bits keeps every type (the kernels treat unknown types as Lambert).
         f.material_types |= m.type < 32u ? (1u << m.type) : 0xffffffffu;
     }
@@ -61,7 +63,8 @@ std::string program_options(const KernelFeatures& features)
         {"GC_USE_ALPHA_MASK", features.alpha_mask},     {"GC_USE_ALPHA_BLEND", features.alpha_blend},
         {"GC_USE_POINT_LIGHTS", features.point_lights}, {"GC_USE_ENV_MAP", features.env_map},
         {"GC_USE_CLEARCOAT", features.clearcoat},       {"GC_USE_SPECULAR", features.specular},
-        {"GC_USE_SHEEN", features.sheen},
+        {"GC_USE_SHEEN", features.sheen},               {"GC_USE_ROUGH_TRANSMISSION", features.rough_transmission},
+        {"GC_USE_VOLUME", features.volume},
     };
     for (const auto& [name, on] : switches)
         if (!on) add_define(options, name, "0");

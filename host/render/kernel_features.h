@@ -30,6 +30,8 @@ struct KernelFeatures {
     bool clearcoat = true;  // the KHR_materials_* layers of GC_MAT_PBR (GC_MATF_CLEARCOAT, ...)
     bool specular = true;
     bool sheen = true;
+    bool rough_transmission = true;  // GC_MATF_ROUGH_TRANSMISSION
+    bool volume = true;              // GC_MATF_VOLUME
     std::uint32_t material_types = 0xffffffffu;  // bit t: some material has type t (GC_MAT_*)
 
     bool operator==(const KernelFeatures&) const = default;

@@ -187,6 +187,20 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         const bool pbr = m.type == MaterialType::Pbr;
         d.flags |= (pbr && l.clearcoat_on ? GC_MATF_CLEARCOAT : 0u) | (pbr && l.specular_on ? GC_MATF_SPECULAR : 0u) |
                    (pbr && l.sheen_on ? GC_MATF_SHEEN : 0u);
+        // Roughness 0 keeps the thin-walled delta lobe (and its program and bits); a
+        // metallicRoughness texture only scales the factor, so a factor of 0 stays smooth.
+        if (pbr && m.transmission > 0.0f && m.roughness > 0.0f) d.flags |= GC_MATF_ROUGH_TRANSMISSION;
+        // A volume makes the mesh a solid, not a thin wall: the transmission lobe refracts (the
+        // microfacet one, a very sharp lobe at roughness 0) and the inside absorbs. The spec
+        // applies the volume only to transmitted light, so without transmission it is dropped.
+        if (pbr && l.volume_on && m.transmission > 0.0f) {
+            d.flags |= GC_MATF_ROUGH_TRANSMISSION | GC_MATF_VOLUME;
+            // Colour 0 would make sigma_a infinite and 0 * inf a NaN at t = 0: a floor of 1e-6.
+            auto sigma = [&](float c) { return -std::log(std::max(c, 1e-6f)) / l.attenuation_distance; };
+            d.absorption_r = sigma(l.attenuation_color.x);
+            d.absorption_g = sigma(l.attenuation_color.y);
+            d.absorption_b = sigma(l.attenuation_color.z);
+        }
         if (pbr && l.specular_on) d.specular = v4(l.specular_color, d.specular.w);
         d.coat = {l.clearcoat, l.clearcoat_roughness, 0.0f, l.specular};
         d.sheen = v4(l.sheen_color, l.sheen_roughness);

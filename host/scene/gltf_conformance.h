@@ -20,14 +20,17 @@ namespace gc {
 //   KHR_materials_emissive_strength   emissiveStrength
 //   KHR_materials_ior                 ior
 //   KHR_materials_specular            factor, colour and their textures
-//   KHR_materials_transmission        transmissionFactor
+//   KHR_materials_transmission        transmissionFactor; refracting (GGX) when rough or with a
+//                                     volume, else thin-walled (gc_bsdf.h)
+//   KHR_materials_volume              attenuationColor, attenuationDistance (thicknessFactor is
+//                                     for rasterizers and not read)
 //   KHR_mesh_quantization             integer POSITION/NORMAL/TANGENT/TEXCOORD accessors
 //                                     (gltf_accessor.cpp)
 //   KHR_texture_transform             offset, rotation, scale, texCoord on every texture slot
-inline constexpr std::array<std::string_view, 8> k_supported_gltf_extensions = {
+inline constexpr std::array<std::string_view, 9> k_supported_gltf_extensions = {
     "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
     "KHR_materials_ior",          "KHR_materials_specular",  "KHR_materials_transmission",
-    "KHR_mesh_quantization",      "KHR_texture_transform"};
+    "KHR_materials_volume",       "KHR_mesh_quantization",   "KHR_texture_transform"};
 
 bool gltf_extension_supported(std::string_view name);
 

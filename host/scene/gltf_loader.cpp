@@ -430,6 +430,15 @@ private:
                                 out.emission.x, out.emission.y, out.emission.z, out.ior, out.transmission, out.alpha_cutoff};
         for (float v : values)
             if (!std::isfinite(v)) fail(where + ": non-finite factor");
+        // Ranges the transmission lobe relies on (gc_bsdf.h): a rough one refracts with the ior.
+        if (!(out.transmission >= 0.0f && out.transmission <= 1.0f))
+            fail(where + ": KHR_materials_transmission transmissionFactor = " + std::to_string(out.transmission) +
+                 " is outside [0, 1]");
+        if (out.transmission > 0.0f && !(out.roughness >= 0.0f && out.roughness <= 1.0f))
+            fail(where + ": pbrMetallicRoughness roughnessFactor = " + std::to_string(out.roughness) +
+                 " is outside [0, 1] on a transmissive material");
+        if (out.transmission > 0.0f && !(out.ior >= 1.0f))
+            fail(where + ": KHR_materials_ior ior = " + std::to_string(out.ior) + " is below 1 on a transmissive material");
 
         out.albedo_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, where);
         out.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false, where);
@@ -474,6 +483,8 @@ private:
         }
         if (const auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end())
             read_specular(it->second, context, resolve, layers);
+        if (const auto it = m.extensions.find("KHR_materials_volume"); it != m.extensions.end())
+            read_volume(it->second, context, layers);
     }
 
     // A textureInfo's KHR_texture_transform (identity without one). The spec gives no

@@ -81,4 +81,23 @@ void read_specular(const tinygltf::Value& ext, const std::string& where, const L
     layers.specular_color_texture = texture_ref(ext, name, "specularColorTexture", true, where, texture);
 }
 
+void read_volume(const tinygltf::Value& ext, const std::string& where, PbrLayers& layers)
+{
+    const std::string ctx = where + ": KHR_materials_volume";
+    if (!ext.IsObject()) throw InputError(ctx + " is not an object");
+    layers.volume_on = true;
+    layers.attenuation_color = colour(ext, "attenuationColor", glm::vec3(1.0f), ctx);
+    for (int i = 0; i < 3; ++i)
+        if (layers.attenuation_color[i] > 1.0f)
+            throw InputError(ctx + ": attenuationColor holds a value above 1");
+    if (ext.Has("attenuationDistance")) {
+        const tinygltf::Value& v = ext.Get("attenuationDistance");
+        const double d = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+        if (!(d > 0.0)) throw InputError(ctx + ": attenuationDistance is not a positive number");
+        layers.attenuation_distance = static_cast<float>(d);
+    }
+    // thicknessFactor and thicknessTexture are not read: they let a rasterizer guess the path
+    // length through the mesh, which a path tracer measures by tracing the ray to the far side.
+}
+
 }  // namespace gc

@@ -25,5 +25,7 @@ void read_clearcoat(const tinygltf::Value& extension, const std::string& where, 
                     PbrLayers& layers);
 void read_specular(const tinygltf::Value& extension, const std::string& where, const LayerTextureResolver& texture,
                    PbrLayers& layers);
+// KHR_materials_volume: attenuationDistance must be > 0, attenuationColor in [0, 1].
+void read_volume(const tinygltf::Value& extension, const std::string& where, PbrLayers& layers);
 
 }  // namespace gc

@@ -192,10 +192,19 @@ GC_FUNC float gc_phong_pdf_upper(float p_spec, float exponent, float3 wo, float3
  * spec's choice). The coat shares the base's shading normal: clearcoatNormalTexture is not
  * modelled (the loader warns).
  *
- * KHR_materials_transmission (without KHR_materials_volume the surface is thin-walled: no
- * refraction) is a DELTA lobe straight through the surface (wi = -wo), weight
- * (1 - metallic) * transmission * (1 - F_d(|wo.z|)) * base, i.e. the smooth limit of the
- * spec's btdf; a rough btdf is not modelled.
+ * KHR_materials_transmission at roughness 0 is thin-walled: a DELTA lobe straight through the
+ * surface (wi = -wo), weight (1 - metallic) * transmission * (1 - F_d(|wo.z|)) * base, the
+ * smooth limit of the spec's btdf. With roughness > 0 (GC_MATF_ROUGH_TRANSMISSION) the btdf is
+ * a GGX microfacet refraction (Walter et al. 2007, "Microfacet Models for Refraction through
+ * Rough Surfaces") with the relative index eta = ior going in (wo outside), 1/ior coming out:
+ *   btdf = D(h) G2(wo, wi) |wi.h| |wo.h| / (|n.wo| |n.wi| (eta wi.h + wo.h)^2),  h ~ wo + eta wi
+ * weighted as the diffuse lobe it replaces, (1 - metallic) * transmission * (1 - F_d(|wo.h|)) *
+ * base; the reflection off the same facets is the specular lobe above. The Walter factor eta^2
+ * cancels against the 1/eta^2 of radiance crossing into the denser side (camera paths, as the
+ * dielectric below). So a closed rough mesh refracts like glass (the thin-walled smooth case
+ * does not: the two limits differ, docs/decisions/khr-material-layers.md). Schlick at wo.h
+ * makes the pair not reciprocal (as the spec's mix); Schlick knows no total internal
+ * reflection, so from inside the facets beyond the critical angle lose their share.
  *
  * Sampling: the lobe is chosen with probabilities proportional to estimates of each lobe's
  * weight at wo (Fresnel at cos = wo.z, see gc_pbr_lobe_probs); the specular lobe samples the
@@ -389,6 +398,75 @@ GC_FUNC float gc_pbr_pdf_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
     return pc * gc_ggx_reflection_pdf(wo, wi, gc_pbr_coat_alpha(m)) + (1.0f - pc) * pdf;
 }
 
+/* ---- KHR_materials_transmission with roughness (GC_MATF_ROUGH_TRANSMISSION) */
+
+GC_FUNC bool gc_pbr_rough_transmission(GcMaterial m)
+{
+    return gc_pbr_has(m, GC_USE_ROUGH_TRANSMISSION, GC_MATF_ROUGH_TRANSMISSION);
+}
+
+/* Relative index n(wi's side) / n(wo's side) for a refraction from wo's side, `side` as
+ * gc_bsdf_side(wo): +1 outside. The ior as gc_pbr_f0 reads it; at least 1.001, because at 1
+ * the generalised half vector of a straight-through pair vanishes. */
+GC_FUNC float gc_pbr_transmission_eta(GcMaterial m, float side)
+{
+    const float ior = fmax(m.emission.w >= 1.0f ? m.emission.w : 1.5f, 1.001f);
+    return side > 0.0f ? ior : 1.0f / ior;
+}
+
+/* The rough btdf for wo above (wo.z > 0) and wi below (wi.z < 0), eta from
+ * gc_pbr_transmission_eta. */
+GC_FUNC float3 gc_pbr_rough_transmission_eval_lower(GcMaterial m, float3 base, float3 wo, float3 wi, float eta)
+{
+    const float3 zero = make_float3(0.0f, 0.0f, 0.0f);
+    float3 wm = wo + wi * eta;
+    const float len = gc_length(wm);
+    if (!(len > 0.0f)) return zero;
+    wm = wm * ((wm.z < 0.0f ? -1.0f : 1.0f) / len);
+    const float dot_o = gc_dot(wo, wm);
+    const float dot_i = gc_dot(wi, wm);
+    /* The facet must face wo and be crossed by wi (else the pair is not a refraction). */
+    if (!(dot_o > 0.0f) || !(dot_i < 0.0f)) return zero;
+    const float alpha = gc_pbr_alpha(m);
+    const float denom = eta * dot_i + dot_o;
+    const float btdf = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) * (-dot_i) * dot_o /
+                       (wo.z * (-wi.z) * denom * denom);
+    const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
+    const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
+    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(dot_o)));
+    const float wc = gc_pbr_coat_weight(m, wo.z);
+    return base * ((1.0f - metallic) * trans * (1.0f - fd) * (1.0f - wc) * btdf);
+}
+
+/* Density of gc_pbr_sample_rough_transmission's wi, given the lobe was chosen: the visible
+ * normal density D_wo(h) times the Jacobian |dh/dwi| = eta^2 |wi.h| / (eta wi.h + wo.h)^2. */
+GC_FUNC float gc_pbr_rough_transmission_pdf_lower(GcMaterial m, float3 wo, float3 wi, float eta)
+{
+    float3 wm = wo + wi * eta;
+    const float len = gc_length(wm);
+    if (!(len > 0.0f)) return 0.0f;
+    wm = wm * ((wm.z < 0.0f ? -1.0f : 1.0f) / len);
+    const float dot_o = gc_dot(wo, wm);
+    const float dot_i = gc_dot(wi, wm);
+    if (!(dot_o > 0.0f) || !(dot_i < 0.0f)) return 0.0f;
+    const float alpha = gc_pbr_alpha(m);
+    const float denom = eta * dot_i + dot_o;
+    const float d_visible = gc_ggx_g1(wo, alpha) * dot_o * gc_ggx_d(wm, alpha) / wo.z;
+    return d_visible * eta * eta * (-dot_i) / (denom * denom);
+}
+
+/* Refracts wo (wo.z > 0) through a visible facet; wi.z >= 0 (total internal reflection at the
+ * facet, or a refraction that stays above the surface) means no sample. */
+GC_FUNC float3 gc_pbr_sample_rough_transmission(GcMaterial m, float3 wo, float eta, float u1, float u2)
+{
+    const float3 wm = gc_ggx_sample_visible_normal(wo, gc_pbr_alpha(m), u1, u2);
+    const float cos_o = gc_dot(wo, wm);
+    const float sin2_t = (1.0f - cos_o * cos_o) / (eta * eta);
+    if (!(sin2_t < 1.0f) || !(cos_o > 0.0f)) return make_float3(0.0f, 0.0f, 1.0f);
+    const float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+    return gc_normalize(wo * (-1.0f / eta) + wm * (cos_o / eta - cos_t));
+}
+
 /* ------------------------------------------------------------------ public API */
 
 /* Non-delta BSDF value f(wo, wi), cosine excluded. */
@@ -399,6 +477,8 @@ GC_FUNC float3 gc_bsdf_eval(GcMaterial m, float3 albedo, float3 wo, float3 wi)
     float side = gc_bsdf_side(wo);
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
+    if (gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m) && wo.z > 0.0f && wi.z < 0.0f)
+        return gc_pbr_rough_transmission_eval_lower(m, albedo, wo, wi, gc_pbr_transmission_eta(m, side));
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return zero;
     if (gc_material_is(m, GC_MAT_PHONG))
         return gc_phong_eval_upper(albedo, GC_XYZ(m.specular), gc_phong_exponent(m), wo, wi);
@@ -415,6 +495,10 @@ GC_FUNC float gc_bsdf_pdf(GcMaterial m, float3 albedo, float3 wo, float3 wi)
     float side = gc_bsdf_side(wo);
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
+    if (gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m) && wo.z > 0.0f && wi.z < 0.0f) {
+        const float p_trans = (1.0f - gc_pbr_coat_prob(m, albedo, wo.z)) * gc_pbr_lobe_probs(m, albedo, wo.z).z;
+        return p_trans * gc_pbr_rough_transmission_pdf_lower(m, wo, wi, gc_pbr_transmission_eta(m, side));
+    }
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
     if (gc_material_is(m, GC_MAT_PHONG)) {
         float p_spec = gc_bsdf_specular_prob(albedo, GC_XYZ(m.specular));
@@ -440,7 +524,7 @@ GC_FUNC GcBsdfSample gc_bsdf_finish_sample(GcMaterial m, float3 albedo, float3 w
     s.pdf_w = gc_bsdf_pdf(m, albedo, wo, wi);
     if (!(s.pdf_w > 0.0f)) return gc_bsdf_no_sample();
     s.weight = s.f * (fabs(wi.z) / s.pdf_w);
-    s.flags = GC_BSDF_REFLECTION;
+    s.flags = wi.z * wo.z < 0.0f ? GC_BSDF_TRANSMISSION : GC_BSDF_REFLECTION;
     return s;
 }
 
@@ -545,6 +629,11 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
              * fails, and gc_bsdf_pdf is zero there, so the density stays consistent. */
             if (!(wi_up.z > 0.0f)) return gc_bsdf_no_sample();
         } else if (p.z > 0.0f && u0 >= p.x + p.y) {
+            if (gc_pbr_rough_transmission(m)) {
+                wi_up = gc_pbr_sample_rough_transmission(m, wo_up, gc_pbr_transmission_eta(m, side), u1, u2);
+                if (!(wi_up.z < 0.0f)) return gc_bsdf_no_sample();
+                return gc_bsdf_finish_sample(m, albedo, wo, gc_bsdf_flip(wi_up, side));
+            }
             return gc_pbr_sample_transmission(m, albedo, wo, (1.0f - pc) * p.z);
         } else {
             wi_up = gc_sample_cosine_hemisphere(u1, u2);

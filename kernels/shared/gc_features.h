@@ -43,6 +43,12 @@
 #ifndef GC_USE_SHEEN
 #define GC_USE_SHEEN 1 /* any PBR material has GC_MATF_SHEEN (KHR_materials_sheen) */
 #endif
+#ifndef GC_USE_ROUGH_TRANSMISSION
+#define GC_USE_ROUGH_TRANSMISSION 1 /* any PBR material has GC_MATF_ROUGH_TRANSMISSION */
+#endif
+#ifndef GC_USE_VOLUME
+#define GC_USE_VOLUME 1 /* any PBR material has GC_MATF_VOLUME (KHR_materials_volume) */
+#endif
 #ifndef GC_USE_MATERIALS
 #define GC_USE_MATERIALS 0xffffffffu /* bit t: some material has GcMaterial.type t */
 #endif

@@ -109,6 +109,14 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
 
+    /* KHR_materials_volume, Beer-Lambert: a segment that ran inside a volume mesh ends on that
+     * mesh's far side (closed, not nested), so this hit's material holds the medium's sigma_a
+     * and hit.t is the length travelled through it. */
+    if (GC_USE_VOLUME != 0 && (path.flags & GC_PATH_IN_VOLUME) != 0u && (m.flags & GC_MATF_VOLUME) != 0u) {
+        beta = beta * make_float3(exp(-m.absorption_r * hit.t), exp(-m.absorption_g * hit.t), exp(-m.absorption_b * hit.t));
+        path.throughput = gc_with_w(beta, path.throughput.w);
+    }
+
     /* Stochastic transparency (glTF BLEND), at the shading level: a transparent hit
      * continues the ray unchanged through the surface (throughput kept, no emission, no
      * light sample). The pass counts as a path segment, as a null interaction does in
@@ -127,7 +135,7 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
             if (path.depth < params.max_depth) {
                 const float3 d = -wo_world;
                 res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, d), s.spawn_scale), d, 0.0f, GC_RAY_UNBOUNDED);
-                path.flags = GC_PATH_SPECULAR;
+                path.flags = GC_PATH_SPECULAR | (path.flags & GC_PATH_IN_VOLUME);
                 res.flags = GC_VERTEX_CONTINUE;
             }
             res.path = path;
@@ -185,6 +193,10 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && gc_material_is(m, GC_MAT_DIELECTRIC)) {
         const float eta = gc_dielectric_eta(m, wo);
         eta_scale *= eta * eta;
+    } else if ((bs.flags & GC_BSDF_TRANSMISSION) != 0u && (bs.flags & GC_BSDF_SPECULAR) == 0u &&
+               gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m)) {
+        const float eta = gc_pbr_transmission_eta(m, gc_bsdf_side(wo));
+        eta_scale *= eta * eta;
     }
     bool alive = bs.flags != 0u && (beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f);
     if (alive && path.depth >= params.rr_depth) {
@@ -203,7 +215,12 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     const float3 wi_world = gc_frame_to_world(frame, bs.wi);
     res.next = gc_make_ray(gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi_world), s.spawn_scale), wi_world, 0.0f, GC_RAY_UNBOUNDED);
     path.throughput = gc_with_w(beta, bs.pdf_w);
-    path.flags = (bs.flags & GC_BSDF_SPECULAR) != 0u ? GC_PATH_SPECULAR : 0u;
+    /* Inside a volume after refracting in against the outward geometric normal; out after
+     * refracting out; a reflection stays on its side. */
+    uint in_volume = path.flags & GC_PATH_IN_VOLUME;
+    if (GC_USE_VOLUME != 0 && (m.flags & GC_MATF_VOLUME) != 0u && (bs.flags & GC_BSDF_TRANSMISSION) != 0u)
+        in_volume = gc_dot(wi_world, s.ng) < 0.0f ? GC_PATH_IN_VOLUME : 0u;
+    path.flags = ((bs.flags & GC_BSDF_SPECULAR) != 0u ? GC_PATH_SPECULAR : 0u) | in_volume;
     res.path = path;
     res.flags |= GC_VERTEX_CONTINUE;
     return res;

@@ -159,6 +159,8 @@ GC_STRUCT(GcTriangleAttribs) {
 #define GC_MATF_CLEARCOAT 8u  /* KHR_materials_clearcoat: coat, coat_texture, coat_roughness_texture */
 #define GC_MATF_SPECULAR 16u  /* KHR_materials_specular: specular.rgb colour, coat.w factor */
 #define GC_MATF_SHEEN 32u     /* KHR_materials_sheen: sheen, sheen_*_texture */
+#define GC_MATF_ROUGH_TRANSMISSION 64u /* KHR_materials_transmission with roughness > 0 or a volume: GGX refraction */
+#define GC_MATF_VOLUME 128u   /* KHR_materials_volume: absorption_* inside the closed mesh (gc_path_vertex.h) */
 
 GC_STRUCT(GcMaterial) {
     float4 albedo;   /* rgb: diffuse reflectance / base color (linear); a: opacity */
@@ -180,9 +182,9 @@ GC_STRUCT(GcMaterial) {
     uint specular_color_texture; /* specularColorTexture (sRGB rgb: colour) */
     uint sheen_color_texture;    /* sheenColorTexture (sRGB rgb: colour) */
     uint sheen_roughness_texture; /* sheenRoughnessTexture (A: roughness) */
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    float absorption_r; /* KHR_materials_volume: sigma_a = -ln(attenuationColor) / attenuationDistance, */
+    float absorption_g; /* per unit length and channel (0 without a volume) */
+    float absorption_b;
 } GC_STRUCT_END(GcMaterial)
 
 #define GC_TEXF_SRGB 1u          /* texels are sRGB-encoded colour */
@@ -287,6 +289,7 @@ GC_STRUCT(GcRenderParams) {
  * its pixel for the whole pass, so stages never race on it. */
 
 #define GC_PATH_SPECULAR 1u /* the last bounce was a delta lobe: no MIS on the emitter it hits */
+#define GC_PATH_IN_VOLUME 2u /* the last segment runs inside a GC_MATF_VOLUME mesh (refracted in through it) */
 
 GC_STRUCT(GcPathState) {
     float4 throughput; /* rgb: path throughput; w: solid-angle pdf of the last BSDF sample */

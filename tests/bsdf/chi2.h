@@ -26,10 +26,11 @@ inline constexpr double kPi = std::numbers::pi;
 // 1 - (1 - alpha)^(1/m) so that, with all samplers correct, the chance of any false alarm is
 // alpha. kChi2TestCount = m, the number of chi2 tests the binary runs: 7 in
 // sampling_test.cpp (disk, cosine, sphere, triangle, 3 Phong lobes) + 9 in bsdf_test.cpp
-// (one per non_delta_cases() entry) + 8 in pbr_test.cpp (one per pbr_cases() entry).
+// (one per non_delta_cases() entry) + 8 in pbr_test.cpp (one per pbr_cases() entry) + 7 in
+// pbr_layers_test.cpp + 6 in pbr_transmission_test.cpp (one per case each).
 // Update it when adding tests.
 inline constexpr double kChi2Alpha = 0.01;
-inline constexpr int kChi2TestCount = 24;
+inline constexpr int kChi2TestCount = 37;
 
 // Uniform floats in [0,1) with 24 random bits (never 1.0f, unlike some
 // uniform_real_distribution<float> implementations).

@@ -31,7 +31,7 @@ TEST(KernelFeatures, LambertOnlySceneTurnsEverythingElseOff)
     EXPECT_EQ(f.material_types, 1u << GC_MAT_LAMBERT);
     EXPECT_EQ(options, "-D GC_USE_TEXTURES=0 -D GC_USE_NORMAL_MAPS=0 -D GC_USE_ALPHA_MASK=0 -D GC_USE_ALPHA_BLEND=0 "
                        "-D GC_USE_POINT_LIGHTS=0 -D GC_USE_ENV_MAP=0 -D GC_USE_CLEARCOAT=0 -D GC_USE_SPECULAR=0 "
-                       "-D GC_USE_SHEEN=0 -D GC_USE_MATERIALS=" +
+                       "-D GC_USE_SHEEN=0 -D GC_USE_ROUGH_TRANSMISSION=0 -D GC_USE_VOLUME=0 -D GC_USE_MATERIALS=" +
                            std::to_string(1u << GC_MAT_LAMBERT) + "u");
 }
 
@@ -46,10 +46,11 @@ TEST(KernelFeatures, EachFeatureIsSeen)
 
     materials[1].normal_texture = 0;
     materials[2].flags = GC_MATF_ALPHA_MASK;
-    materials[0].flags = GC_MATF_ALPHA_BLEND | GC_MATF_TWO_SIDED | GC_MATF_CLEARCOAT | GC_MATF_SPECULAR | GC_MATF_SHEEN;
+    materials[0].flags = GC_MATF_ALPHA_BLEND | GC_MATF_TWO_SIDED | GC_MATF_CLEARCOAT | GC_MATF_SPECULAR | GC_MATF_SHEEN |
+                        GC_MATF_ROUGH_TRANSMISSION | GC_MATF_VOLUME;
     const KernelFeatures f = kernel_features(materials, 2, true);
     EXPECT_TRUE(f.textures && f.normal_maps && f.alpha_mask && f.alpha_blend && f.point_lights && f.env_map);
-    EXPECT_TRUE(f.clearcoat && f.specular && f.sheen);
+    EXPECT_TRUE(f.clearcoat && f.specular && f.sheen && f.rough_transmission && f.volume);
     // Only the material types are left to specialise.
     EXPECT_EQ(program_options(f), "-D GC_USE_MATERIALS=" + std::to_string(f.material_types) + "u");
 }

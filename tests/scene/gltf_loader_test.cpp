@@ -909,6 +909,11 @@ TEST(GltfMaterialLayers, MalformedValuesAreRefused)
         {R"("KHR_materials_specular": {"specularFactor": -0.1})", "specularFactor = -0.1"},
         {R"("KHR_materials_specular": {"specularColorFactor": [1, 1]})", "specularColorFactor is not an array of three numbers"},
         {R"("KHR_materials_specular": {"specularColorFactor": [1, -1, 1]})", "specularColorFactor holds a value"},
+        {R"("KHR_materials_volume": {"attenuationDistance": 0})", "KHR_materials_volume: attenuationDistance is not a positive"},
+        {R"("KHR_materials_volume": {"attenuationColor": [1, 1.5, 1]})", "attenuationColor holds a value above 1"},
+        {R"("KHR_materials_volume": {"attenuationColor": [1, -0.5, 1]})", "attenuationColor holds a value"},
+        {R"("KHR_materials_transmission": {"transmissionFactor": 1.5})", "transmissionFactor = 1.5"},
+        {R"("KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 0.5})", "ior = 0.5"},
     };
     for (const auto& [ext, why] : cases) {
         Doc doc;
@@ -931,6 +936,24 @@ TEST(GltfMaterialLayers, SpecularAndCoatSpheres)
     EXPECT_TRUE(s.materials[3].layers.clearcoat_on && !s.materials[3].layers.specular_on);
     EXPECT_EQ(s.materials[4].layers.clearcoat, 0.5f);
     EXPECT_NEAR(s.materials[4].layers.clearcoat_roughness, 0.4f, 1e-7f);
+}
+
+TEST(GltfMaterialLayers, RoughGlassVolumeModel)
+{
+    // tests/data/scenes/rough-glass-volume (made here): rough transmissive cube with a volume.
+    const Scene s = load_scene(test::test_data_scene("rough-glass-volume/RoughGlassVolume.gltf"));
+    ASSERT_EQ(s.materials.size(), 2u);
+    const Material& glass = s.materials[0];
+    std::printf("glass: transmission %.2f roughness %.2f ior %.2f attenuation (%.2f %.2f %.2f) at %.2f\n",
+                glass.transmission, glass.roughness, glass.ior, glass.layers.attenuation_color.x,
+                glass.layers.attenuation_color.y, glass.layers.attenuation_color.z, glass.layers.attenuation_distance);
+    EXPECT_EQ(glass.transmission, 1.0f);
+    EXPECT_EQ(glass.roughness, 0.25f);
+    EXPECT_EQ(glass.ior, 1.5f);
+    EXPECT_TRUE(glass.layers.volume_on);
+    EXPECT_NEAR(glass.layers.attenuation_color.y, 0.5f, 1e-7f);
+    EXPECT_NEAR(glass.layers.attenuation_distance, 0.6f, 1e-7f);
+    EXPECT_EQ(s.materials[1].layers, PbrLayers{});
 }
 
 TEST(GltfMaterialLayers, ClearCoatSampleModel)

@@ -95,7 +95,9 @@ INSTANTIATE_TEST_SUITE_P(
                       // KHR_materials_clearcoat with its factor and roughness textures.
                       SceneCase{"ClearCoat", "tests/data/scenes/ClearCoatTest/ClearCoatTest.gltf", 96},
                       // KHR_materials_specular and KHR_materials_clearcoat factors on spheres.
-                      SceneCase{"MaterialLayers", "tests/data/scenes/material-layers/MaterialLayers.gltf", 96}),
+                      SceneCase{"MaterialLayers", "tests/data/scenes/material-layers/MaterialLayers.gltf", 96},
+                      // Rough KHR_materials_transmission with KHR_materials_volume (refraction, absorption).
+                      SceneCase{"RoughGlassVolume", "tests/data/scenes/rough-glass-volume/RoughGlassVolume.gltf", 96}),
     [](const ::testing::TestParamInfo<SceneCase>& param_info) { return std::string(param_info.param.name); });
 
 // Every light the OpenCL side has, on scenes in the repository, each through both integrators
