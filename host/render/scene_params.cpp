@@ -15,6 +15,18 @@ bool has_base_color(const Material& m)
 {
     return m.type != MaterialType::Dielectric;
 }
+// Whether the adjoint's BSDF derivative (gc_bsdf_grad.h) covers the material's lobes: not the
+// KHR layers (clearcoat, specular, sheen) or rough transmission and volumes, which came later.
+bool bsdf_differentiated(const Material& m)
+{
+    if (m.type != MaterialType::Pbr) return true;
+    const PbrLayers& l = m.layers;
+    const bool rough_transmission = m.transmission > 0.0f && m.roughness > 0.0f;
+    return !(l.clearcoat_on || l.specular_on || l.sheen_on || l.volume_on || rough_transmission);
+}
+constexpr std::string_view k_not_in_bsdf_derivative =
+    "not differentiated yet: the adjoint's BSDF derivative does not cover this material's "
+    "KHR_materials layers (clearcoat, specular, sheen) or rough transmission and volume";
 constexpr std::string_view k_env_radiance = "environment/radiance";
 constexpr std::string_view k_textures = "textures/";
 
@@ -24,8 +36,8 @@ bool is_differentiated_texture(const Scene& scene, std::size_t i)
 {
     const int t = static_cast<int>(i);
     return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
-        return (m.albedo_texture == t && has_base_color(m)) ||
-               (m.metallic_roughness_texture == t && m.type == MaterialType::Pbr) ||
+        return (m.albedo_texture == t && has_base_color(m) && bsdf_differentiated(m)) ||
+               (m.metallic_roughness_texture == t && m.type == MaterialType::Pbr && bsdf_differentiated(m)) ||
                (m.emission_texture == t && m.is_emissive());
     });
 }
@@ -62,12 +74,12 @@ std::vector<ParamInfo> list_params(const Scene& scene)
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         const std::string prefix = std::string(k_materials) + material_key(scene, i) + "/";
-        if (has_base_color(m)) out.push_back({prefix + "base_color", {3}});
+        if (has_base_color(m) && bsdf_differentiated(m)) out.push_back({prefix + "base_color", {3}});
         if (m.is_emissive()) out.push_back({prefix + "emission", {3}});
         if (m.type == MaterialType::Phong || m.type == MaterialType::Mirror)
             out.push_back({prefix + "specular", {3}});
         if (m.type == MaterialType::Phong) out.push_back({prefix + "phong_exponent", {1}});
-        if (m.type == MaterialType::Pbr) {
+        if (m.type == MaterialType::Pbr && bsdf_differentiated(m)) {
             out.push_back({prefix + "metallic", {1}});
             out.push_back({prefix + "roughness", {1}});
         }
@@ -124,6 +136,8 @@ ParamRef resolve_param(const Scene& scene, std::string_view name)
     const std::uint32_t material = find_material(scene, rest.substr(0, slash), name);
     const std::string_view field = rest.substr(slash + 1);
     const Material& m = scene.materials[material];
+    if ((field == "base_color" || field == "metallic" || field == "roughness") && !bsdf_differentiated(m))
+        throw UsageError("'" + std::string(name) + "' is " + std::string(k_not_in_bsdf_derivative));
     if (field == "base_color") {
         if (!has_base_color(m)) not_differentiable(name, "a smooth dielectric has no base colour");
         return {ParamRef::Kind::BaseColor, material};

@@ -683,5 +683,40 @@ TEST(SceneParamsNames, ListAndErrors)
     EXPECT_NE(message("textures/3/texels").find("has 0 textures"), std::string::npos);
 }
 
+TEST(SceneParamsNames, KhrLayersAreNotOfferedYet)
+{
+    // The BSDF derivative predates the KHR layers: a coated or rough-glass glTF material's
+    // BSDF parameters are neither listed nor accepted (its emission still is).
+    for (const char* layer : {"clearcoat", "specular", "volume", "rough transmission"}) {
+        Scene s = open_box();
+        Material m;
+        m.name = "layered";
+        m.type = MaterialType::Pbr;
+        m.emission = glm::vec3(1.0f);
+        if (std::string(layer) == "clearcoat") m.layers.clearcoat_on = true;
+        if (std::string(layer) == "specular") m.layers.specular_on = true;
+        if (std::string(layer) == "volume") m.layers.volume_on = true;
+        if (std::string(layer) == "rough transmission") {
+            m.transmission = 1.0f;
+            m.roughness = 0.3f;
+        }
+        s.materials.push_back(m);
+        std::vector<std::string> names;
+        for (const ParamInfo& p : list_params(s)) names.push_back(p.name);
+        EXPECT_EQ(std::count(names.begin(), names.end(), "materials/layered/emission"), 1) << layer;
+        for (const char* field : {"base_color", "metallic", "roughness"}) {
+            const std::string name = std::string("materials/layered/") + field;
+            EXPECT_EQ(std::count(names.begin(), names.end(), name), 0) << layer << " " << field;
+            try {
+                resolve_param(s, name);
+                ADD_FAILURE() << layer << ": " << name << " accepted";
+            } catch (const UsageError& e) {
+                std::printf("%s, %s: %s\n", layer, field, e.what());
+                EXPECT_NE(std::string(e.what()).find("not differentiated yet"), std::string::npos);
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace gc
