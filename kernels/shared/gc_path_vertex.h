@@ -113,7 +113,9 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
      * mesh's far side (closed, not nested), so this hit's material holds the medium's sigma_a
      * and hit.t is the length travelled through it. */
     if (GC_USE_VOLUME != 0 && (path.flags & GC_PATH_IN_VOLUME) != 0u && (m.flags & GC_MATF_VOLUME) != 0u) {
-        beta = beta * make_float3(exp(-m.absorption_r * hit.t), exp(-m.absorption_g * hit.t), exp(-m.absorption_b * hit.t));
+        /* e^-x as 2^(-x / ln 2): gc_exp2 gives the same bits on every device (exp does not). */
+        const float k = -1.44269504f * hit.t;
+        beta = beta * make_float3(gc_exp2(k * m.absorption_r), gc_exp2(k * m.absorption_g), gc_exp2(k * m.absorption_b));
         path.throughput = gc_with_w(beta, path.throughput.w);
     }
 
