@@ -14,6 +14,7 @@
 #include "gc_bsdf.h"
 #include "tests/bsdf/bsdf_albedo.h"
 #include "tests/bsdf/chi2.h"
+#include "tests/bsdf/pbr_materials.h"
 
 namespace gc::dev {
 namespace {
@@ -26,31 +27,10 @@ using test_albedo::base_of;
 using test_albedo::directional_albedo;
 using test_albedo::draw;
 
-float3 grey(float v) { return make_float3(v, v, v); }
-float3 dir_deg(float theta_deg, float phi = 0.7f) { return test::spherical(theta_deg * kPi / 180.0, phi); }
-
-GcMaterial pbr(float3 base, float metallic, float roughness, float transmission = 0.0f)
-{
-    GcMaterial m{};
-    m.type = GC_MAT_PBR;
-    m.albedo = make_float4(base.x, base.y, base.z, 1.0f);
-    m.emission = make_float4(0.0f, 0.0f, 0.0f, 1.5f);
-    m.pbr = make_float4(metallic, roughness, 0.5f, transmission);
-    m.specular = make_float4(1.0f, 1.0f, 1.0f, 1.0f);
-    m.coat = make_float4(0.0f, 0.0f, 0.0f, 1.0f);
-    m.albedo_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = GC_INVALID;
-    m.coat_texture = m.coat_roughness_texture = m.specular_texture = m.specular_color_texture = GC_INVALID;
-    m.sheen_color_texture = m.sheen_roughness_texture = GC_INVALID;
-    return m;
-}
-
-GcMaterial coated(GcMaterial m, float factor, float roughness)
-{
-    m.flags |= GC_MATF_CLEARCOAT;
-    m.coat.x = factor;
-    m.coat.y = roughness;
-    return m;
-}
+using test_pbr::coated;
+using test_pbr::dir_deg;
+using test_pbr::grey;
+using test_pbr::pbr;
 
 GcMaterial with_specular(GcMaterial m, float factor, float3 colour)
 {
