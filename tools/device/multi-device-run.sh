@@ -1,36 +1,47 @@
 #!/usr/bin/env bash
-# On the GPU node (through the device tool, carrying .deps/): builds the bare configuration,
-# runs the chunk and multi-device tests there (GPU + PoCL), then times --device gpu, cpu and all
-# on the Cornell box and the dragon at 1024^2, with chunk sizes 32, 128 and one chunk (the
-# per-chunk cost), and prints each device's chunks, busy time and last-chunk time (-v) and
-# the image hashes. Not yet run: no GPU node was lent when it was written (issue 41).
-# Usage: OUT=<folder> tools/device/multi-device-run.sh
+# On the GPU node (through the device tool, carrying .deps/): builds the bare configuration with
+# the bench tools, runs the chunk and multi-device tests there (GPU + PoCL), then times
+# --device gpu, cpu and all at 1024^2 on the Cornell box, the dragon and the generated
+# 5.2M-triangle scene (geocold-large-mesh), two rounds each; on the first two also chunk sizes
+# of 128 and one chunk (the per-chunk cost). Prints each run's samples/s line, each device's
+# chunks, busy time and last-chunk time (-v) and the image hashes.
+# Usage: OUT=<folder> tools/device/multi-device-run.sh [scenes, default: cornell dragon large]
 set -uo pipefail
 log=$OUT/run.log
-tools/device/build-and-test.sh -j 16 -R 'chunks_test|multi_device_test|MultiDevice|ChunkPlan|FrameAcc|PartialImage|MeanFilm|AskSize' > "$OUT/build.log" 2>&1
+# The Python module too, so that tools/device/python-parity.sh (PY_BUILD_DIR=build/bare) finds it built.
+GEOCOLD_CMAKE_ARGS="-DGEOCOLD_BUILD_BENCH=ON -DGEOCOLD_PYTHON=ON -DPython_EXECUTABLE=$(command -v python3) -Dnanobind_DIR=$(python3 -m nanobind --cmake_dir)" \
+  tools/device/build-and-test.sh \
+  -R 'chunks_test|multi_device_test|MultiDevice|ChunkPlan|FrameAcc|PartialImage|MeanFilm|AskSize' > "$OUT/build.log" 2>&1
 echo "build+tests rc=$?" | tee -a "$log"
 grep -E "tests passed|Failed|FAILED" "$OUT/build.log" | tail -8 >> "$log"
 cli=build/bare/geocold-cl
 $cli --list-devices | tee -a "$log"
-export GEOCOLD_CACHE_DIR=$OUT/../kcache
+export GEOCOLD_CACHE_DIR=/tmp/kcache
 cornell=scenes/cornell-box/CornellBox-Original.obj
 dragon=.deps/shared/scenes/stanford-dragon-100k/dragon.obj
+large=/tmp/large/large.obj
 run() {  # label, args...
   local label=$1; shift
   $cli "$@" -v -o /tmp/o.pfm > /tmp/r.log 2>&1; rc=$?
-  echo "$label rc=$rc: $(grep 'wrote' /tmp/r.log)" | tee -a "$log"
+  echo "$label rc=$rc: $(grep -E 'wrote|error' /tmp/r.log)" | tee -a "$log"
   grep "device .*chunks" /tmp/r.log | sed 's/^/    /' | tee -a "$log"
   sha256sum /tmp/o.pfm | cut -c1-16 | sed "s/^/    hash /" | tee -a "$log"
 }
-for scene in cornell dragon; do
-  s=$cornell; [[ $scene == dragon ]] && s=$dragon
-  spp=2048; [[ $scene == dragon ]] && spp=4096
+scenes=${*:-cornell dragon large}
+for scene in $scenes; do
+  case $scene in
+    cornell) s=$cornell; spp=2048 ;;
+    dragon) s=$dragon; spp=4096 ;;
+    large) [ -f $large ] || { mkdir -p /tmp/large && build/bare/geocold-large-mesh $large | tee -a "$log"; }
+           s=$large; spp=1024 ;;
+  esac
   # warm-up (kernel caches)
   $cli $s --device all --res 256x256 --spp 64 -q -o /tmp/w.pfm
   for round in 1 2; do
     run "$scene gpu   r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples 32
     run "$scene cpu   r$round" $s --device cpu --threads 15 --res 1024x1024 --spp 32 --chunk-samples 32
     run "$scene all   r$round" $s --device all --res 1024x1024 --spp $spp --chunk-samples 32
+    [[ $scene == large ]] && continue
     run "$scene gpu1chunk r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples $spp
     run "$scene gpu c128 r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples 128
     run "$scene all c128 r$round" $s --device all --res 1024x1024 --spp $spp --chunk-samples 128
