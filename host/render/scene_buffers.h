@@ -28,4 +28,5 @@ inline auto arg(cl_mem mem) { return std::make_tuple(mem); }
     GC_SCENE_PICK(g, bvh, alpha, shade, lights, GC_DEVICE_SCENE_ARG_)(host)
 #define GC_DEVICE_SCENE_ARG_0(host)
 #define GC_DEVICE_SCENE_ARG_1(host) , ::gc::scene_buffers::arg(host)
+#define GC_DEVICE_SCENE_ARG_F(host) GC_DEVICE_SCENE_ARG_1(host)
 #define GC_DEVICE_SCENE_ARGS(group) std::tuple_cat(std::tuple<>() GC_SCENE_BUFFERS(GC_DEVICE_SCENE_ARG, group))

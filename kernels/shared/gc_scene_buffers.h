@@ -9,7 +9,8 @@
  *     X(g, name, element type, DeviceScene expression, bvh, alpha, shade, lights)
  * `g` is passed through untouched (the generator's group); `name` is the parameter's name in
  * OpenCL C and C++; the DeviceScene expression is what the host passes (kernels ignore it);
- * the last four columns say which groups take the buffer (1) or not (0):
+ * the last four columns say which groups take the buffer (1, or F for the group's first row)
+ * or not (0):
  *     bvh     BVH traversal of opaque triangles (trace.cl, probes, host plain references)
  *     alpha   the alpha-MASK test (gc_alpha_solid)
  *     shade   shading a path vertex (gc_shade_vertex, the aov and whitted shading)
@@ -33,7 +34,7 @@
  * DeviceScene member and upload, an element accessor below if the kernels want one, and for
  * the Vulkan reference an SSBO, binding and accessor in kernels/vk/scene_bindings.glsl.
  *
- * GLSL has neither pointers nor variadic macros: a shader's buffers are globals bound by
+ * GLSL has no pointers: a shader's buffers are globals bound by
  * descriptor (kernels/vk/scene_bindings.glsl), so there every group's parameter list is one
  * dummy uint (a signature puts a comma after it, so it must name one parameter) and its
  * argument list 0u. The shared function bodies read buffers only through the element
@@ -46,29 +47,34 @@
 
 /*                      name             element type         DeviceScene       bvh alpha shade lights */
 #define GC_SCENE_BUFFERS(X, g)                                                                        \
-    X(g, gc_bvh_nodes,    GcTraversalNode,     bvh.nodes(),      1, 0, 0, 0)                           \
+    X(g, gc_bvh_nodes,    GcTraversalNode,     bvh.nodes(),      F, 0, 0, 0)                           \
     X(g, gc_bvh_tris,     GcTraversalTriangle, bvh.triangles(),  1, 0, 0, 0)                           \
-    X(g, attribs,         GcTriangleAttribs,   attribs,          0, 1, 1, 0)                           \
+    X(g, attribs,         GcTriangleAttribs,   attribs,          0, F, F, 0)                           \
     X(g, materials,       GcMaterial,          materials,        0, 1, 1, 0)                           \
     X(g, textures,        GcTexture,           textures,         0, 1, 1, 0)                           \
     X(g, texels,          uint,                texels,           0, 1, 1, 0)                           \
     X(g, emitters,        GcEmitter,           emitters,         0, 0, 1, 0)                           \
-    X(g, point_lights,    GcPointLight,        point_lights,     0, 0, 1, 1)                           \
+    X(g, point_lights,    GcPointLight,        point_lights,     0, 0, 1, F)                           \
     X(g, env_pixels,      float4,              env_pixels,       0, 0, 1, 1)                           \
     X(g, env_marginal,    float,               env_marginal,     0, 0, 1, 1)                           \
     X(g, env_conditional, float,               env_conditional,  0, 0, 1, 1)
 
-/* GC_SCENE_IN_<group>(bvh, alpha, shade, lights): 1 where a row belongs to the group. */
+/* GC_SCENE_IN_<group>(bvh, alpha, shade, lights): 0 where a row is not in the group, F for the
+ * group's first row, 1 for the others. trace's first row is bvh's; scene's is the list's. */
 #define GC_SCENE_IN_BVH(bvh, alpha, shade, lights) bvh
 #define GC_SCENE_IN_ALPHA(bvh, alpha, shade, lights) alpha
 #define GC_SCENE_IN_SHADE(bvh, alpha, shade, lights) shade
 #define GC_SCENE_IN_LIGHTS(bvh, alpha, shade, lights) lights
 #define GC_SCENE_IN_TRACE(bvh, alpha, shade, lights) GC_SCENE_OR_##bvh##alpha
-#define GC_SCENE_IN_SCENE(bvh, alpha, shade, lights) 1
+#define GC_SCENE_IN_SCENE(bvh, alpha, shade, lights) GC_SCENE_ANY_##bvh
 #define GC_SCENE_OR_00 0
 #define GC_SCENE_OR_01 1
+#define GC_SCENE_OR_0F 1
 #define GC_SCENE_OR_10 1
-#define GC_SCENE_OR_11 1
+#define GC_SCENE_OR_F0 F
+#define GC_SCENE_ANY_0 1
+#define GC_SCENE_ANY_1 1
+#define GC_SCENE_ANY_F F
 
 /* Pastes after expanding its arguments (a plain ## would paste the unexpanded tokens). */
 #define GC_SCENE_CAT(a, b) GC_SCENE_CAT_(a, b)
@@ -106,31 +112,32 @@
 
 #else /* OpenCL C and C++ */
 
-/* Each generator emits ", item" for every row of the group; GC_SCENE_LIST drops the leading
- * comma. (Every group has at least one row.) */
-#define GC_SCENE_LIST(...) GC_SCENE_LIST_(__VA_ARGS__)
-#define GC_SCENE_LIST_(empty, ...) __VA_ARGS__
+/* Each generator emits "item" for a group's first row and ", item" for its others. (OpenCL C
+ * 1.2 has no variadic macros, so a leading comma cannot be dropped afterwards.) */
 #define GC_SCENE_PICK(g, bvh, alpha, shade, lights, kind) \
     GC_SCENE_CAT(kind, GC_SCENE_IN_##g(bvh, alpha, shade, lights))
 
 #define GC_SCENE_PARAM(g, name, type, host, bvh, alpha, shade, lights) \
     GC_SCENE_PICK(g, bvh, alpha, shade, lights, GC_SCENE_PARAM_)(type, name)
 #define GC_SCENE_PARAM_0(type, name)
+#define GC_SCENE_PARAM_F(type, name) GC_GLOBAL const type *name
 #define GC_SCENE_PARAM_1(type, name) , GC_GLOBAL const type *name
 #define GC_SCENE_ARG(g, name, type, host, bvh, alpha, shade, lights) \
     GC_SCENE_PICK(g, bvh, alpha, shade, lights, GC_SCENE_ARG_)(name)
 #define GC_SCENE_ARG_0(name)
+#define GC_SCENE_ARG_F(name) name
 #define GC_SCENE_ARG_1(name) , name
 #define GC_SCENE_VOID(g, name, type, host, bvh, alpha, shade, lights) \
     GC_SCENE_PICK(g, bvh, alpha, shade, lights, GC_SCENE_VOID_)(name)
 #define GC_SCENE_VOID_0(name)
+#define GC_SCENE_VOID_F(name) (void)name
 #define GC_SCENE_VOID_1(name) , (void)name
 
 /* A group's parameter list, argument list, and a statement marking its parameters used (for
  * helpers that read only some of them; C++ warns about unused parameters). */
-#define GC_SCENE_GROUP_PARAMS(g) GC_SCENE_LIST(GC_SCENE_BUFFERS(GC_SCENE_PARAM, g))
-#define GC_SCENE_GROUP_ARGS(g) GC_SCENE_LIST(GC_SCENE_BUFFERS(GC_SCENE_ARG, g))
-#define GC_SCENE_GROUP_UNUSED(g) (GC_SCENE_LIST(GC_SCENE_BUFFERS(GC_SCENE_VOID, g)))
+#define GC_SCENE_GROUP_PARAMS(g) GC_SCENE_BUFFERS(GC_SCENE_PARAM, g)
+#define GC_SCENE_GROUP_ARGS(g) GC_SCENE_BUFFERS(GC_SCENE_ARG, g)
+#define GC_SCENE_GROUP_UNUSED(g) (GC_SCENE_BUFFERS(GC_SCENE_VOID, g))
 
 #if defined(GC_TRACE_OPAQUE)
 #define GC_BVH_PARAMS GC_SCENE_GROUP_PARAMS(BVH)
