@@ -5,15 +5,21 @@
 # 5.2M-triangle scene (geocold-large-mesh), two rounds each; on the first two also chunk sizes
 # of 128 and one chunk (the per-chunk cost). Prints each run's samples/s line, each device's
 # chunks, busy time and last-chunk time (-v) and the image hashes.
-# Usage: OUT=<folder> tools/device/multi-device-run.sh [scenes, default: cornell dragon large]
+# Usage: OUT=<folder> tools/device/multi-device-run.sh [build|runs|all (default)] [scenes, default:
+# cornell dragon large]; ROUNDS (default 2) rounds of each scene's runs.
 set -uo pipefail
 log=$OUT/run.log
+what=${1:-all}
+[ $# -eq 0 ] || shift
+if [ "$what" != runs ]; then
 # The Python module too, so that tools/device/python-parity.sh (PY_BUILD_DIR=build/bare) finds it built.
 GEOCOLD_CMAKE_ARGS="-DGEOCOLD_BUILD_BENCH=ON -DGEOCOLD_PYTHON=ON -DPython_EXECUTABLE=$(command -v python3) -Dnanobind_DIR=$(python3 -m nanobind --cmake_dir)" \
   tools/device/build-and-test.sh \
   -R 'chunks_test|multi_device_test|MultiDevice|ChunkPlan|FrameAcc|PartialImage|MeanFilm|AskSize' > "$OUT/build.log" 2>&1
 echo "build+tests rc=$?" | tee -a "$log"
 grep -E "tests passed|Failed|FAILED" "$OUT/build.log" | tail -8 >> "$log"
+fi
+[ "$what" != build ] || exit 0
 cli=build/bare/geocold-cl
 $cli --list-devices | tee -a "$log"
 export GEOCOLD_CACHE_DIR=/tmp/kcache
@@ -37,7 +43,7 @@ for scene in $scenes; do
   esac
   # warm-up (kernel caches)
   $cli $s --device all --res 256x256 --spp 64 -q -o /tmp/w.pfm
-  for round in 1 2; do
+  for round in $(seq "${ROUNDS:-2}"); do
     run "$scene gpu   r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples 32
     run "$scene cpu   r$round" $s --device cpu --threads 15 --res 1024x1024 --spp 32 --chunk-samples 32
     run "$scene all   r$round" $s --device all --res 1024x1024 --spp $spp --chunk-samples 32
