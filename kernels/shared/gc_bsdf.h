@@ -296,6 +296,18 @@ GC_FUNC float gc_ggx_reflection_pdf(float3 wo, float3 wi, float alpha)
 
 GC_FUNC float gc_max_component(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 
+/* The cosine at which the dielectric's Schlick Fresnel is taken for an incident cosine cos_i.
+ * From inside a rough-transmission mesh, Schlick at cos_i knows no total internal reflection
+ * (the light that cannot leave would be lost), so there it is taken at the transmitted cosine
+ * (Snell from ior to 1): F rises to 1 at the critical angle and stays there beyond it. */
+GC_FUNC float gc_pbr_fresnel_cos(GcMaterial m, float cos_i)
+{
+    if (!gc_pbr_has(m, GC_USE_ROUGH_TRANSMISSION, GC_MATF_SEEN_FROM_INSIDE)) return cos_i;
+    const float ior = m.emission.w >= 1.0f ? m.emission.w : 1.5f;
+    const float sin2_t = ior * ior * (1.0f - cos_i * cos_i);
+    return sin2_t < 1.0f ? sqrt(1.0f - sin2_t) : 0.0f;
+}
+
 /* The dielectric's weighted Fresnel, per channel, at Schlick weight sw: F_d in all three
  * channels, or specular * F_s with KHR_materials_specular (see above). */
 GC_FUNC float3 gc_pbr_dielectric_fresnel(GcMaterial m, float sw)
@@ -319,7 +331,7 @@ GC_FUNC float3 gc_pbr_lobe_weights(GcMaterial m, float3 base, float cos_o)
     const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
     const float sw = gc_schlick_weight(cos_o);
-    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, sw));
+    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(gc_pbr_fresnel_cos(m, cos_o))));
     const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
     const float w_spec = (1.0f - metallic) * fd + metallic * fmax(gc_luminance(fm), 0.0f);
     const float w_base = (1.0f - metallic) * (1.0f - fd) * fmax(gc_luminance(base), 0.0f);
@@ -368,8 +380,9 @@ GC_FUNC float3 gc_pbr_base_eval_upper(GcMaterial m, float3 base, float3 wo, floa
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
     const float alpha = gc_pbr_alpha(m);
     const float3 wm = gc_normalize(wo + wi);
-    const float sw = gc_schlick_weight(gc_dot(wo, wm));
-    const float3 fd = gc_pbr_dielectric_fresnel(m, sw);
+    const float cos_h = gc_dot(wo, wm);
+    const float sw = gc_schlick_weight(cos_h);
+    const float3 fd = gc_pbr_dielectric_fresnel(m, gc_schlick_weight(gc_pbr_fresnel_cos(m, cos_h)));
     const float3 fm = base + (make_float3(1.0f, 1.0f, 1.0f) - base) * sw;
     const float3 fresnel = fd * (1.0f - metallic) + fm * metallic;
     const float spec = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z);
@@ -405,6 +418,14 @@ GC_FUNC bool gc_pbr_rough_transmission(GcMaterial m)
     return gc_pbr_has(m, GC_USE_ROUGH_TRANSMISSION, GC_MATF_ROUGH_TRANSMISSION);
 }
 
+/* m as the functions below see it from wo's side (`side` as gc_bsdf_side(wo)): a rough-
+ * transmission material seen from inside is marked, for gc_pbr_fresnel_cos. */
+GC_FUNC GcMaterial gc_pbr_from_side(GcMaterial m, float side)
+{
+    if (side < 0.0f && gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m)) m.flags |= GC_MATF_SEEN_FROM_INSIDE;
+    return m;
+}
+
 /* Relative index n(wi's side) / n(wo's side) for a refraction from wo's side, `side` as
  * gc_bsdf_side(wo): +1 outside. The ior as gc_pbr_f0 reads it; at least 1.001, because at 1
  * the generalised half vector of a straight-through pair vanishes. */
@@ -433,7 +454,7 @@ GC_FUNC float3 gc_pbr_rough_transmission_eval_lower(GcMaterial m, float3 base, f
                        (wo.z * (-wi.z) * denom * denom);
     const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
-    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(dot_o)));
+    const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(gc_pbr_fresnel_cos(m, dot_o))));
     const float wc = gc_pbr_coat_weight(m, wo.z);
     return base * ((1.0f - metallic) * trans * (1.0f - fd) * (1.0f - wc) * btdf);
 }
@@ -475,6 +496,7 @@ GC_FUNC float3 gc_bsdf_eval(GcMaterial m, float3 albedo, float3 wo, float3 wi)
     float3 zero = make_float3(0.0f, 0.0f, 0.0f);
     if (gc_material_is(m, GC_MAT_DIELECTRIC)) return zero;
     float side = gc_bsdf_side(wo);
+    m = gc_pbr_from_side(m, side);
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
     if (gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m) && wo.z > 0.0f && wi.z < 0.0f)
@@ -493,6 +515,7 @@ GC_FUNC float gc_bsdf_pdf(GcMaterial m, float3 albedo, float3 wo, float3 wi)
 {
     if (gc_material_is(m, GC_MAT_DIELECTRIC)) return 0.0f;
     float side = gc_bsdf_side(wo);
+    m = gc_pbr_from_side(m, side);
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
     if (gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m) && wo.z > 0.0f && wi.z < 0.0f) {
@@ -588,6 +611,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
     if (gc_material_is(m, GC_MAT_DIELECTRIC)) return gc_dielectric_sample(m, wo, u0);
 
     float side = gc_bsdf_side(wo);
+    m = gc_pbr_from_side(m, side);
     float3 wo_up = gc_bsdf_flip(wo, side);
     if (!(wo_up.z > 0.0f)) return gc_bsdf_no_sample();
 

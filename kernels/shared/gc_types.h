@@ -161,6 +161,9 @@ GC_STRUCT(GcTriangleAttribs) {
 #define GC_MATF_SHEEN 32u     /* KHR_materials_sheen: sheen, sheen_*_texture */
 #define GC_MATF_ROUGH_TRANSMISSION 64u /* KHR_materials_transmission with roughness > 0 or a volume: GGX refraction */
 #define GC_MATF_VOLUME 128u   /* KHR_materials_volume: absorption_* inside the closed mesh (gc_path_vertex.h) */
+/* Set by gc_bsdf.h on its own copy of a rough-transmission material seen from inside; never
+ * stored in a scene. */
+#define GC_MATF_SEEN_FROM_INSIDE 0x80000000u
 
 GC_STRUCT(GcMaterial) {
     float4 albedo;   /* rgb: diffuse reflectance / base color (linear); a: opacity */

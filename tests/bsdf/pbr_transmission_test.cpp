@@ -53,7 +53,7 @@ std::vector<Case> transmission_cases()
         {"white r.3 trans 1 wo=30", rough_glass(grey(1.0f), 0.3f, 1.0f), dir_deg(30)},
         {"tinted r.5 trans .6 wo=60", rough_glass(make_float3(0.9f, 0.5f, 0.2f), 0.5f, 0.6f), dir_deg(60)},
         {"white r.4 trans 1 inside wo=150", rough_glass(grey(1.0f), 0.4f, 1.0f), dir_deg(150)},
-        {"ior 1.33 r.2 inside wo=100", rough_glass(grey(0.8f), 0.2f, 1.0f, 1.33f), dir_deg(100)},
+        {"ior 1.33 r.2 inside wo=140", rough_glass(grey(0.8f), 0.2f, 1.0f, 1.33f), dir_deg(140)},
         {"coat .5 r.3 over r.4 trans .8 wo=40", coated(rough_glass(grey(0.9f), 0.4f, 0.8f), 0.5f, 0.3f), dir_deg(40)},
         {"metal .3 r.6 trans 1 wo=75", rough_glass(grey(0.7f), 0.6f, 1.0f, 1.5f, 0.3f), dir_deg(75)},
     };
@@ -157,6 +157,22 @@ TEST(PbrTransmission, WhiteRoughDielectricConservesEnergy)
             EXPECT_LE(mean, 1.0 + 1e-3 + 4.0 * se) << "roughness " << r << " wo.z " << wo.z;
         }
         std::printf("[energy] white rough dielectric r%.2f: max energy over 16 wo %.4f\n", r, hi);
+    }
+}
+
+// Seen from inside beyond the critical angle (ior 1.5: 41.8 degrees), nothing refracts out: a
+// smooth-ish white dielectric reflects all but GGX's single-scattering loss back inside.
+// (Schlick's F at the incident cosine would let 90 % of it go.)
+TEST(PbrTransmission, TotalInternalReflectionKeepsTheLightInside)
+{
+    for (float theta : {130.0f, 120.0f, 100.0f}) {
+        const GcMaterial m = rough_glass(grey(1.0f), 0.1f, 1.0f);
+        const Albedo a = directional_albedo(m, dir_deg(theta), 200000, 13);
+        const double e = gc_luminance(a.mean);
+        std::printf("[tir] white r.1 from inside at %.0f deg (%.1f from the normal): albedo %.4f (+- %.4f)\n", theta,
+                    180.0f - theta, e, a.stderr_);
+        EXPECT_GT(e, 0.9) << theta;
+        EXPECT_LE(e, 1.0 + 4.0 * a.stderr_) << theta;
     }
 }
 
