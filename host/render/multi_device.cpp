@@ -47,10 +47,12 @@ struct Shared {
           ends(round_ends(plan_, rounds_)),
           finished(plan_.chunk_count()),
           progress(devices),
+          chunk_started(devices),
           seconds_per_sample(devices)
     {
         for (std::uint32_t n = 0; n < ends.front(); ++n) todo.push_back(n);
         for (auto& p : progress) p = 0;
+        for (auto& t : chunk_started) t = 0.0;
         for (auto& s : seconds_per_sample) s = 0.0;
         reserved.resize(devices);
     }
@@ -71,6 +73,7 @@ struct Shared {
     std::uint32_t sunk_count = 0;  // complete chunks through the sink (under sink_mutex)
     std::exception_ptr round_error;  // a pick that threw: the frame stops and render_chunks rethrows it
     std::vector<std::atomic<std::uint32_t>> progress;     // samples of its current chunk, per device
+    std::vector<std::atomic<double>> chunk_started;       // when it started its current chunk (frame seconds)
     std::vector<std::atomic<double>> seconds_per_sample;  // per device, 0 = not known yet
     std::atomic<bool> stop{false};
     bool cancelled = false;
@@ -120,6 +123,20 @@ void start_next_round_if_due(Shared& shared)
 }
 
 }  // namespace
+
+double backup_gain(double mine_seconds_per_sample, const RunningChunk& chunk)
+{
+    if (!(mine_seconds_per_sample > 0.0) || chunk.count == 0) return 0.0;
+    const std::uint32_t done = std::min(chunk.done, chunk.count);
+    double left = 0.0;
+    if (chunk.holder_seconds_per_sample > 0.0)
+        left = chunk.holder_seconds_per_sample * (chunk.count - done);
+    else if (done > 0)
+        left = chunk.elapsed_seconds / done * (chunk.count - done);
+    else
+        left = chunk.elapsed_seconds;
+    return std::max(0.0, left - mine_seconds_per_sample * chunk.count);
+}
 
 std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count)
 {
@@ -208,12 +225,13 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                         for (const auto& [chunk, holders] : shared.running) {
                             if (holders.size() != 1 || holders.count(me)) continue;
                             const std::size_t holder = *holders.begin();
-                            const double their = shared.seconds_per_sample[holder].load();
-                            if (their <= 0.0 || mine_spp <= 0.0) continue;
-                            const std::uint32_t count = plan.chunk(chunk).count;
-                            const double left = their * (count - std::min(count, shared.progress[holder].load()));
-                            const double gain = left - mine_spp * count;
-                            if (gain > 0.25 * left && gain > best_gain) {
+                            RunningChunk running;
+                            running.count = plan.chunk(chunk).count;
+                            running.done = shared.progress[holder].load();
+                            running.elapsed_seconds = elapsed() - shared.chunk_started[holder].load();
+                            running.holder_seconds_per_sample = shared.seconds_per_sample[holder].load();
+                            const double gain = backup_gain(mine_spp, running);
+                            if (gain > 0.25 * (gain + mine_spp * running.count) && gain > best_gain) {
                                 best_gain = gain;
                                 pick = chunk;
                             }
@@ -237,6 +255,7 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
 
                 const ChunkRange range = plan.chunk(n);
                 const auto chunk_start = Clock::now();
+                shared.chunk_started[me] = seconds_between(start, chunk_start);
                 if (pixels != selected) {
                     if (pixels) renderer.select_pixels(*pixels);
                     else renderer.select_all_pixels();

@@ -84,6 +84,21 @@ struct ChunkRounds {
 // share of what is left, at most 8.
 std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count);
 
+// What an idle device knows of another device's running chunk, for deciding on a backup.
+struct RunningChunk {
+    std::uint32_t count = 0;            // samples in the chunk
+    std::uint32_t done = 0;             // of those, finished by its holder so far
+    double elapsed_seconds = 0.0;       // since its holder started it
+    double holder_seconds_per_sample = 0.0;  // the holder's measured rate; 0 before its first chunk
+};
+
+// Seconds a backup of `chunk` on a device rendering `mine_seconds_per_sample` would save: the
+// holder's expected time left less this device's time for the whole chunk (0 when it saves
+// nothing, or when this device's rate is not known yet). Before the holder has a measured
+// rate, its chunk tells: elapsed / done per sample, or, while not even one pass is done, as
+// long again as it has taken so far (so a slow device's first chunk is backed up too).
+double backup_gain(double mine_seconds_per_sample, const RunningChunk& chunk);
+
 // Renders every chunk of `plan` (until `control` stops it, or `rounds` ends it early) on
 // `devices`, handing each to `sink`. Throws the first device's error when every device failed,
 // and UsageError for check points that do not fit the plan.

@@ -163,5 +163,30 @@ TEST(AskSize, GpusTakeMoreThanCpus)
     EXPECT_EQ(ask_size(true, 0, 2), 1u);
 }
 
+// A GPU 50x faster than the CPU that holds the last chunk: with the CPU's rate measured, from
+// its progress, and (the case the H200 run showed: a CPU's first 128-sample chunk holding the
+// frame for 9 s while the GPU idled) before either is known.
+TEST(BackupGain, AFastIdleDeviceBacksUpASlowHolder)
+{
+    const double gpu = 0.001;
+    const double cpu = 0.05;
+    RunningChunk c;
+    c.count = 128;
+    c.holder_seconds_per_sample = cpu;
+    c.done = 28;
+    EXPECT_NEAR(backup_gain(gpu, c), cpu * 100 - gpu * 128, 1e-9);
+    c.holder_seconds_per_sample = 0.0;
+    c.elapsed_seconds = 28 * cpu;
+    EXPECT_NEAR(backup_gain(gpu, c), cpu * 100 - gpu * 128, 1e-9);
+    c.done = 0;
+    c.elapsed_seconds = 2.4;
+    EXPECT_NEAR(backup_gain(gpu, c), 2.4 - gpu * 128, 1e-9);
+    // Nothing to gain: the holder is as fast, or this device's own rate is not known yet.
+    c.holder_seconds_per_sample = gpu;
+    c.done = 100;
+    EXPECT_EQ(backup_gain(gpu, c), 0.0);
+    EXPECT_EQ(backup_gain(0.0, c), 0.0);
+}
+
 }  // namespace
 }  // namespace gc

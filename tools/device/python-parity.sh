@@ -19,14 +19,18 @@ no_tests=-DGEOCOLD_BUILD_TESTS=OFF
 { cmake --preset bare -B "$pybuild" -DOpenCL_INCLUDE_DIR="$PWD/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
     -DGEOCOLD_PYTHON=ON $no_tests -DPython_EXECUTABLE="$(command -v python3)" \
     -Dnanobind_DIR="$(python3 -m nanobind --cmake_dir)" &&
-  cmake --build "$pybuild" -j "$(nproc)" --target _geocold &&
+  cmake --build "$pybuild" -j "$(nproc)" --target _geocold geocold-cl &&
   cmake --install "$pybuild" --component python --prefix /tmp/pyinst; } > "$out/py-build.log" 2>&1 ||
   { tail -30 "$out/py-build.log"; exit 8; }
-site=$(ls -d /tmp/pyinst/lib/python3*/site-packages)
+# Where the package went: the install rule's destination can be the interpreter's own
+# site-packages (absolute), which --prefix does not move.
+init=$(grep -oE '(Installing|Up-to-date): .*/geocold/__init__\.py' "$out/py-build.log" | head -1 | sed -E 's/^[A-Za-z-]+: //')
+[ -n "$init" ] || { echo "the install log names no geocold/__init__.py" >&2; exit 8; }
+site=$(dirname "$(dirname "$init")")
 export PYTHONPATH=$site:/tmp/site
 status=0
 for d in gpu cpu; do
-  GEOCOLD_TEST_DEVICE=$d GEOCOLD_CLI=$PWD/build/bare/geocold-cl python3 -m pytest -q -rs -p no:cacheprovider \
+  GEOCOLD_TEST_DEVICE=$d GEOCOLD_CLI=$PWD/$pybuild/geocold-cl python3 -m pytest -q -rs -p no:cacheprovider \
     tests/python/test_render.py tests/python/test_edits.py -k "cli or two_renders or edit" 2>&1 | tee "$out/py-$d.log" | tail -15
   [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
 done
