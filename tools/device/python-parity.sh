@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# On the GPU node (no package registry): builds the geocold Python module with CMake and runs
-# the pytest cases that compare Python with the CLI bit for bit, on the GPU and on PoCL.
-# Needs a build of the CLI at build/bare (tools/device/build-and-test.sh) and, carried in
-# .whl/, the wheels of nanobind, pytest, pluggy, iniconfig, packaging and pygments for the
-# node's Python (see the device tool's README for the pip download line). Logs go to $OUT.
+# On the GPU node (no package registry): builds the geocold Python module and geocold-cl with
+# CMake (the `bare` preset, carried .deps/) and runs the pytest cases that compare Python with
+# the CLI bit for bit, on the GPU and on PoCL. The node's Python has numpy, pytest and
+# nanobind; wheels carried in .whl/ (the device tool's README has the pip download line) are
+# installed first where present. Logs go to $OUT; py-summary.log lists each test's outcome.
 # Usage: tools/device/python-parity.sh
 set -uo pipefail
 out=${OUT:-build/py}
@@ -28,10 +28,19 @@ init=$(grep -oE '(Installing|Up-to-date): .*/geocold/__init__\.py' "$out/py-buil
 [ -n "$init" ] || { echo "the install log names no geocold/__init__.py" >&2; exit 8; }
 site=$(dirname "$(dirname "$init")")
 export PYTHONPATH=$site:/tmp/site
-status=0
+# One pytest process per test: the H200 node's GPU runs in exclusive-process compute mode (a
+# geocold-cl started by a test saw no NVIDIA device once the test process held a context), and
+# each test runs the CLI before its own Python render.
+tests=(tests/python/test_render.py tests/python/test_edits.py)
+selection="cli or two_renders or edit"
+: > "$out/py-summary.log"
 for d in gpu cpu; do
-  GEOCOLD_TEST_DEVICE=$d GEOCOLD_CLI=$PWD/$pybuild/geocold-cl python3 -m pytest -q -rs -p no:cacheprovider \
-    tests/python/test_render.py tests/python/test_edits.py -k "cli or two_renders or edit" 2>&1 | tee "$out/py-$d.log" | tail -15
-  [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
+  : > "$out/py-$d.log"
+  ids=$(python3 -m pytest -q --collect-only -p no:cacheprovider "${tests[@]}" -k "$selection" | grep '::')
+  for id in $ids; do
+    GEOCOLD_TEST_DEVICE=$d GEOCOLD_CLI=$PWD/$pybuild/geocold-cl python3 -m pytest -q -rs -p no:cacheprovider "$id" \
+      >> "$out/py-$d.log" 2>&1 && echo "PASSED $d $id" || echo "FAILED $d $id"
+  done | tee -a "$out/py-summary.log"
 done
-exit $status
+echo "$(grep -c PASSED "$out/py-summary.log") passed, $(grep -c FAILED "$out/py-summary.log") failed"
+! grep -q FAILED "$out/py-summary.log"
