@@ -66,7 +66,11 @@ static inline void gc_grad_add_fixed(__global ulong* slots, uint i, long v)
 static inline void gc_grad_add(GcGradTarget g, uint i, float x)
 {
     if (!isfinite(x) || x == 0.0f) return;
-    atomic_max(g.max_bits, as_uint(fabs(x)));
+    /* Every work-item's every contribution would meet at this one address. The largest only
+     * grows, so a plain read that is already at least |x| (a stale one is only smaller) makes
+     * the atomic redundant; the final value is the same. */
+    const uint bits = as_uint(fabs(x));
+    if (bits > *g.max_bits) atomic_max(g.max_bits, bits);
     const long v = convert_long_sat_rte(x * g.scale);
     if (v != 0) gc_grad_add_fixed(g.slots, i, v);
 }
