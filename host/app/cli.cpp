@@ -52,11 +52,14 @@ int run_cli(const std::vector<std::string>& args)
             cl::limit_cpu_device_threads(options.threads);
             setenv("LP_NUM_THREADS", std::to_string(options.threads).c_str(), 1);
         } else if (names_several_devices(options.device)) {
-            // One frame on several devices: the CPU device leaves a core to the host threads
+            // One frame on several devices: the CPU device leaves cores to the host threads
             // that drive the others (PoCL reads the limit when it is loaded, so before any
-            // OpenCL call, and before we know whether there is a GPU).
+            // OpenCL call, and before we know whether there is a GPU). Two from 8 cores on: a
+            // thread waiting for an NVIDIA GPU spins, and the chunks' sums are added on the
+            // host; with one left, PoCL beside the H200 slowed its kernels by 5-12 %
+            // (docs/performance.md), more than PoCL added.
             const int cores = static_cast<int>(std::thread::hardware_concurrency());
-            if (cores > 1) cl::limit_cpu_device_threads(cores - 1);
+            if (cores > 1) cl::limit_cpu_device_threads(cores >= 8 ? cores - 2 : cores - 1);
         }
         if (options.list_devices) return static_cast<int>(run_list_devices());
         if (options.preview) return static_cast<int>(run_preview(options));

@@ -274,7 +274,8 @@ Device:
   -d, --device SPEC        any | gpu | cpu | <index> | <name substring>   (default: any,
                            which prefers a GPU); all, or a list 0,2: one frame on every
                            device named, each pulling chunks of samples (a CPU device then
-                           leaves one core to the threads that drive the others)
+                           leaves a core, two from 8 cores on, to the threads that drive
+                           the others)
       --list-devices       list the OpenCL devices and exit
       --threads N          CPU threads: PoCL's workers on CPU devices, lavapipe's, and the
                            BVH build (default: every core)
