@@ -50,7 +50,9 @@ __kernel void path_adjoint(const GcRenderParams params,
                            __global uint* max_bits,
                            __global const uint* view_slots,
                            const float scale,
-                           const uint env_slot)
+                           const uint env_slot,
+                           const uint slot_count,
+                           const uint view_count)
 {
     const uint item = get_global_id(0);
     if (item >= params.pixel_count) return;
@@ -63,6 +65,8 @@ __kernel void path_adjoint(const GcRenderParams params,
     g.view_slots = view_slots;
     g.scale = scale;
     g.env_slot = env_slot;
+    g.slot_count = slot_count;
+    g.view_count = view_count;
     for (uint k = 0u; k < params.samples_in_pass; ++k) {
         const uint sample = params.sample_index + k;
         const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);

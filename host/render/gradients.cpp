@@ -194,11 +194,16 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         const std::uint32_t zero = 0;
         max_bits.write(std::span<const std::uint32_t>(&zero, 1));
         m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, view_slots,
-                          std::ldexp(1.0f, e), layout.env_slot);
+                          std::ldexp(1.0f, e), layout.env_slot, slot_count,
+                          static_cast<std::uint32_t>(layout.view_slots.size()));
         if (max_delta > 0.0) m_kernel.launch(m_context, pixels, local_size, "adjoint paths");
         m_context.finish();
         std::uint32_t bits = 0;
         max_bits.read(std::span<std::uint32_t>(&bits, 1));
+        if (bits == GC_GRAD_OUT_OF_RANGE)
+            throw DeviceError("the adjoint addressed a gradient slot out of range on " + m_context.device().device_name +
+                              " (" + std::to_string(slot_count) + " slots, " +
+                              std::to_string(layout.view_slots.size()) + " texture views): a bug; nothing was written there");
         float largest = 0.0f;
         std::memcpy(&largest, &bits, sizeof largest);
         m_stats.scale_exponent = e;

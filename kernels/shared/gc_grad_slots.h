@@ -27,6 +27,9 @@
 #define GC_GRAD_FIELD_METALLIC 10u
 #define GC_GRAD_FIELD_ROUGHNESS 11u
 #define GC_GRAD_ENV_SLOTS 3u
+/* The largest contribution's value once a slot or view index was out of range: above every
+ * float's bits, so the atomic max keeps it, and the host reports the pass as failed. */
+#define GC_GRAD_OUT_OF_RANGE 0xFFFFFFFFu
 
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 
@@ -42,6 +45,8 @@ typedef struct {
     __global const uint* view_slots; /* per texture view: its texels' first slot, or GC_INVALID */
     float scale;             /* 2^e: one unit of a slot is 1 / scale */
     uint env_slot;
+    uint slot_count;         /* slots' length: an index beyond it is a bug, flagged, not written */
+    uint view_count;         /* view_slots' length */
 } GcGradTarget;
 
 /* Adds v to slot i, exactly and in any order. */
@@ -66,6 +71,10 @@ static inline void gc_grad_add_fixed(__global ulong* slots, uint i, long v)
 static inline void gc_grad_add(GcGradTarget g, uint i, float x)
 {
     if (!isfinite(x) || x == 0.0f) return;
+    if (i >= g.slot_count) {
+        atomic_max(g.max_bits, GC_GRAD_OUT_OF_RANGE);
+        return;
+    }
     /* Every work-item's every contribution would meet at this one address. The largest only
      * grows, so a plain read that is already at least |x| (a stale one is only smaller) makes
      * the atomic redundant; the final value is the same. */

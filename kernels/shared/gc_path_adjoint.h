@@ -49,6 +49,10 @@ static inline void gc_scatter_texels(GC_SHADE_PARAMS, GcGradTarget g, uint view,
 {
     GC_SHADE_UNUSED();
     if (GC_USE_TEXTURES == 0 || view == GC_INVALID) return;
+    if (view >= g.view_count) {
+        atomic_max(g.max_bits, GC_GRAD_OUT_OF_RANGE);
+        return;
+    }
     const uint first = g.view_slots[view];
     if (first == GC_INVALID) return;
     const GcTexelFootprint fp = gc_texture_footprint(GC_TEXTURE(view), uv.x, uv.y);
