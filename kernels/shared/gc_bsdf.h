@@ -219,11 +219,14 @@ GC_FUNC float gc_pbr_alpha(GcMaterial m)
     return fmax(r * r, GC_PBR_MIN_ALPHA);
 }
 
-/* Dielectric F0 from KHR_materials_ior (emission.w); anything below 1 (or NaN) means the
- * glTF default 1.5. */
+/* The index of refraction from KHR_materials_ior (emission.w); anything below 1 (or NaN)
+ * means the glTF default 1.5. */
+GC_FUNC float gc_pbr_ior(GcMaterial m) { return m.emission.w >= 1.0f ? m.emission.w : 1.5f; }
+
+/* Dielectric F0 for gc_pbr_ior. */
 GC_FUNC float gc_pbr_f0(GcMaterial m)
 {
-    const float ior = m.emission.w >= 1.0f ? m.emission.w : 1.5f;
+    const float ior = gc_pbr_ior(m);
     const float q = (ior - 1.0f) / (ior + 1.0f);
     return q * q;
 }
@@ -303,7 +306,7 @@ GC_FUNC float gc_max_component(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 GC_FUNC float gc_pbr_fresnel_cos(GcMaterial m, float cos_i)
 {
     if (!gc_pbr_has(m, GC_USE_ROUGH_TRANSMISSION, GC_MATF_SEEN_FROM_INSIDE)) return cos_i;
-    const float ior = m.emission.w >= 1.0f ? m.emission.w : 1.5f;
+    const float ior = gc_pbr_ior(m);
     const float sin2_t = ior * ior * (1.0f - cos_i * cos_i);
     return sin2_t < 1.0f ? sqrt(1.0f - sin2_t) : 0.0f;
 }
@@ -427,11 +430,11 @@ GC_FUNC GcMaterial gc_pbr_from_side(GcMaterial m, float side)
 }
 
 /* Relative index n(wi's side) / n(wo's side) for a refraction from wo's side, `side` as
- * gc_bsdf_side(wo): +1 outside. The ior as gc_pbr_f0 reads it; at least 1.001, because at 1
+ * gc_bsdf_side(wo): +1 outside. gc_pbr_ior, at least 1.001, because at 1
  * the generalised half vector of a straight-through pair vanishes. */
 GC_FUNC float gc_pbr_transmission_eta(GcMaterial m, float side)
 {
-    const float ior = fmax(m.emission.w >= 1.0f ? m.emission.w : 1.5f, 1.001f);
+    const float ior = fmax(gc_pbr_ior(m), 1.001f);
     return side > 0.0f ? ior : 1.0f / ior;
 }
 
