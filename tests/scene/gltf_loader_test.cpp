@@ -362,6 +362,23 @@ TEST(GltfSynthetic, MaterialFactorsAndExtensions)
     EXPECT_EQ(m.alpha_cutoff, 0.25f);
 }
 
+// transmissionTexture is not read yet: the loader says so rather than dropping it silently.
+TEST(GltfSynthetic, TransmissionTextureIsNamedAsIgnored)
+{
+    ScratchDir dir;
+    Doc doc;
+    doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+    doc.top = R"("materials": [{"name": "m", "extensions": {"KHR_materials_transmission":
+        {"transmissionFactor": 0.9, "transmissionTexture": {"index": 0}}}}],
+        "extensionsUsed": ["KHR_materials_transmission"],)";
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(write_gltf(dir, doc));
+    const std::string err = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_NEAR(s.materials[0].transmission, 0.9f, 1e-6f);
+    EXPECT_NE(err.find("transmissionTexture is ignored"), std::string::npos) << err;
+}
+
 // The one-triangle document with per-vertex TANGENT (accessor 3, 48 bytes after the 80 of
 // triangle_bin) and a material whose normal map (a 1x1 PPM) reads them.
 struct TangentDoc {
