@@ -56,8 +56,7 @@ int run_cli(const std::vector<std::string>& args)
             // that drive the others (PoCL reads the limit when it is loaded, so before any
             // OpenCL call, and before we know whether there is a GPU). Two from 8 cores on: a
             // thread waiting for an NVIDIA GPU spins, and the chunks' sums are added on the
-            // host; with one left, PoCL beside the H200 slowed its kernels by 5-12 %
-            // (docs/performance.md), more than PoCL added.
+            // host, so one core was not enough (docs/performance.md).
             const int cores = static_cast<int>(std::thread::hardware_concurrency());
             if (cores > 1) cl::limit_cpu_device_threads(cores >= 8 ? cores - 2 : cores - 1);
         }

@@ -135,7 +135,9 @@ double backup_gain(double mine_seconds_per_sample, const RunningChunk& chunk)
         left = chunk.elapsed_seconds / done * (chunk.count - done);
     else
         left = chunk.elapsed_seconds;
-    return std::max(0.0, left - mine_seconds_per_sample * chunk.count);
+    const double gain = left - mine_seconds_per_sample * chunk.count;
+    // A backup costs this device the whole chunk: worth it only for a clear saving.
+    return gain > 0.25 * left ? gain : 0.0;
 }
 
 std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count)
@@ -231,7 +233,7 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                             running.elapsed_seconds = elapsed() - shared.chunk_started[holder].load();
                             running.holder_seconds_per_sample = shared.seconds_per_sample[holder].load();
                             const double gain = backup_gain(mine_spp, running);
-                            if (gain > 0.25 * (gain + mine_spp * running.count) && gain > best_gain) {
+                            if (gain > best_gain) {
                                 best_gain = gain;
                                 pick = chunk;
                             }

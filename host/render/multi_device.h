@@ -93,8 +93,9 @@ struct RunningChunk {
 };
 
 // Seconds a backup of `chunk` on a device rendering `mine_seconds_per_sample` would save: the
-// holder's expected time left less this device's time for the whole chunk (0 when it saves
-// nothing, or when this device's rate is not known yet). Before the holder has a measured
+// holder's expected time left less this device's time for the whole chunk; 0 when that is
+// not more than a quarter of the holder's time left, or when this device's rate is not known
+// yet. Before the holder has a measured
 // rate, its chunk tells: elapsed / done per sample, or, while not even one pass is done, as
 // long again as it has taken so far (so a slow device's first chunk is backed up too).
 double backup_gain(double mine_seconds_per_sample, const RunningChunk& chunk);

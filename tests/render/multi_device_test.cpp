@@ -164,8 +164,7 @@ TEST(AskSize, GpusTakeMoreThanCpus)
 }
 
 // A GPU 50x faster than the CPU that holds the last chunk: with the CPU's rate measured, from
-// its progress, and (the case the H200 run showed: a CPU's first 128-sample chunk holding the
-// frame for 9 s while the GPU idled) before either is known.
+// its progress, and before either is known (a CPU's first chunk must be backed up too).
 TEST(BackupGain, AFastIdleDeviceBacksUpASlowHolder)
 {
     const double gpu = 0.001;
