@@ -66,13 +66,16 @@ static inline void gc_grad_add_fixed(__global ulong* slots, uint i, long v)
 #endif
 }
 
+/* Marks the pass as failed: an index was out of range (a bug); nothing is written there. */
+static inline void gc_grad_flag_out_of_range(GcGradTarget g) { atomic_max(g.max_bits, GC_GRAD_OUT_OF_RANGE); }
+
 /* Adds the contribution x to slot i. Non-finite ones are dropped, as the film drops
  * non-finite samples (gc_film_value). */
 static inline void gc_grad_add(GcGradTarget g, uint i, float x)
 {
     if (!isfinite(x) || x == 0.0f) return;
     if (i >= g.slot_count) {
-        atomic_max(g.max_bits, GC_GRAD_OUT_OF_RANGE);
+        gc_grad_flag_out_of_range(g);
         return;
     }
     /* Every work-item's every contribution would meet at this one address. The largest only

@@ -50,7 +50,7 @@ static inline void gc_scatter_texels(GC_SHADE_PARAMS, GcGradTarget g, uint view,
     GC_SHADE_UNUSED();
     if (GC_USE_TEXTURES == 0 || view == GC_INVALID) return;
     if (view >= g.view_count) {
-        atomic_max(g.max_bits, GC_GRAD_OUT_OF_RANGE);
+        gc_grad_flag_out_of_range(g);
         return;
     }
     const uint first = g.view_slots[view];

@@ -78,6 +78,8 @@ bool write_obj(const gc::Scene& scene, const std::string& path, const std::strin
 
 }  // namespace
 
+constexpr const char* k_usage = "Usage: geocold-large-mesh OUT.obj [--grid N (1-64)] [--levels L (1-8)]\n";
+
 int main(int argc, char** argv)
 {
     std::string out;
@@ -95,12 +97,12 @@ int main(int argc, char** argv)
         } else if (out.empty() && !a.starts_with("-")) {
             out = a;
         } else {
-            std::fprintf(stderr, "Usage: geocold-large-mesh OUT.obj [--grid N (1-64)] [--levels L (1-8)]\n");
+            std::fputs(k_usage, stderr);
             return 2;
         }
     }
     if (out.empty() || std::filesystem::path(out).extension() != ".obj") {
-        std::fprintf(stderr, "Usage: geocold-large-mesh OUT.obj [--grid N (1-64)] [--levels L (1-8)]\n");
+        std::fputs(k_usage, stderr);
         return 2;
     }
     const gc::Scene scene = gc::bench::make_large_mesh(grid, levels);
