@@ -13,6 +13,7 @@
 #include <set>
 #include <thread>
 
+#include "host/render/chunk_handoff.h"
 #include "host/render/pass_planner.h"
 #include "host/util/error.h"
 #include "host/util/log.h"
@@ -177,6 +178,8 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
             const auto setup_start = Clock::now();
             Session session(device, prepared, settings, setup);
             Renderer& renderer = session.renderer();
+            const bool with_squares = control.with_squares || rounds.active();
+            ChunkHandoff handoff(session.context(), renderer, with_squares);
             report.setup_seconds = seconds_between(setup_start, Clock::now());
             Clock::time_point start;
             {
@@ -188,152 +191,158 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
             const bool limited = control.time_limit_seconds > 0.0;
             std::shared_ptr<const std::vector<std::uint32_t>> selected;  // the renderer's pick
 
-            for (;;) {
-                std::uint32_t n = 0;
-                bool backup = false;
-                std::shared_ptr<const std::vector<std::uint32_t>> pixels;
-                {
-                    std::unique_lock lock(shared.mutex);
-                    for (;;) {
-                        if (shared.stop) return;
-                        auto& own = shared.reserved[me];
-                        if (own.empty() && !shared.todo.empty()) {
-                            const std::uint32_t want = ask_size(device.is_gpu, std::uint32_t(shared.todo.size()),
-                                                                std::uint32_t(shared.live));
-                            for (std::uint32_t i = 0; i < want && !shared.todo.empty(); ++i) {
-                                own.push_back(shared.todo.front());
-                                shared.todo.pop_front();
-                            }
-                        }
-                        if (own.empty()) {
-                            // Take a chunk another device reserved and has not started.
-                            for (auto& other : shared.reserved)
-                                if (other.size() > 0 && &other != &own) {
-                                    own.push_back(other.back());
-                                    other.pop_back();
-                                    break;
+            // Returns when the plan is done or the frame stops.
+            const auto render_chunks_until_done = [&] {
+                for (;;) {
+                    std::uint32_t n = 0;
+                    bool backup = false;
+                    std::shared_ptr<const std::vector<std::uint32_t>> pixels;
+                    {
+                        std::unique_lock lock(shared.mutex);
+                        for (;;) {
+                            if (shared.stop) return;
+                            auto& own = shared.reserved[me];
+                            if (own.empty() && !shared.todo.empty()) {
+                                const std::uint32_t want = ask_size(device.is_gpu, std::uint32_t(shared.todo.size()),
+                                                                    std::uint32_t(shared.live));
+                                for (std::uint32_t i = 0; i < want && !shared.todo.empty(); ++i) {
+                                    own.push_back(shared.todo.front());
+                                    shared.todo.pop_front();
                                 }
-                        }
-                        if (!own.empty()) {
-                            n = own.front();
-                            own.pop_front();
-                            break;
-                        }
-                        // Nothing left to take: back up the running chunk that its holder
-                        // will finish last, if this device expects to finish it sooner.
-                        const double mine_spp = shared.seconds_per_sample[me].load();
-                        double best_gain = 0.0;
-                        std::optional<std::uint32_t> pick;
-                        for (const auto& [chunk, holders] : shared.running) {
-                            if (holders.size() != 1 || holders.count(me)) continue;
-                            const std::size_t holder = *holders.begin();
-                            RunningChunk running;
-                            running.count = plan.chunk(chunk).count;
-                            running.done = shared.progress[holder].load();
-                            running.elapsed_seconds = elapsed() - shared.chunk_started[holder].load();
-                            running.holder_seconds_per_sample = shared.seconds_per_sample[holder].load();
-                            const double gain = backup_gain(mine_spp, running);
-                            if (gain > best_gain) {
-                                best_gain = gain;
-                                pick = chunk;
                             }
+                            if (own.empty()) {
+                                // Take a chunk another device reserved and has not started.
+                                for (auto& other : shared.reserved)
+                                    if (other.size() > 0 && &other != &own) {
+                                        own.push_back(other.back());
+                                        other.pop_back();
+                                        break;
+                                    }
+                            }
+                            if (!own.empty()) {
+                                n = own.front();
+                                own.pop_front();
+                                break;
+                            }
+                            // Nothing left to take: back up the running chunk that its holder
+                            // will finish last, if this device expects to finish it sooner.
+                            const double mine_spp = shared.seconds_per_sample[me].load();
+                            double best_gain = 0.0;
+                            std::optional<std::uint32_t> pick;
+                            for (const auto& [chunk, holders] : shared.running) {
+                                if (holders.size() != 1 || holders.count(me)) continue;
+                                const std::size_t holder = *holders.begin();
+                                RunningChunk running;
+                                running.count = plan.chunk(chunk).count;
+                                running.done = shared.progress[holder].load();
+                                running.elapsed_seconds = elapsed() - shared.chunk_started[holder].load();
+                                running.holder_seconds_per_sample = shared.seconds_per_sample[holder].load();
+                                const double gain = backup_gain(mine_spp, running);
+                                if (gain > best_gain) {
+                                    best_gain = gain;
+                                    pick = chunk;
+                                }
+                            }
+                            if (pick) {
+                                n = *pick;
+                                backup = true;
+                                break;
+                            }
+                            if (shared.running.empty() && shared.todo.empty() && !shared.round_pending()) {
+                                bool any_reserved = false;
+                                for (const auto& r : shared.reserved) any_reserved = any_reserved || !r.empty();
+                                if (!any_reserved) return;  // the plan is done
+                            }
+                            shared.changed.wait_for(lock, std::chrono::milliseconds(20));
                         }
-                        if (pick) {
-                            n = *pick;
-                            backup = true;
+                        shared.running[n].insert(me);
+                        mine.push_back(n);
+                        pixels = shared.pixels;
+                    }
+
+                    const ChunkRange range = plan.chunk(n);
+                    const auto chunk_start = Clock::now();
+                    shared.chunk_started[me] = seconds_between(start, chunk_start);
+                    if (pixels != selected) {
+                        if (pixels) renderer.select_pixels(*pixels);
+                        else renderer.select_all_pixels();
+                        selected = pixels;
+                    }
+                    renderer.clear(range.first);
+                    std::uint32_t done = 0;
+                    bool abandoned = false;
+                    bool stopped = false;
+                    while (done < range.count) {
+                        if (shared.finished[n].load() || shared.stop.load()) {
+                            abandoned = shared.finished[n].load();
+                            stopped = !abandoned;
                             break;
                         }
-                        if (shared.running.empty() && shared.todo.empty() && !shared.round_pending()) {
-                            bool any_reserved = false;
-                            for (const auto& r : shared.reserved) any_reserved = any_reserved || !r.empty();
-                            if (!any_reserved) return;  // the plan is done
+                        std::uint32_t wanted = range.count - done;
+                        if (limited)
+                            wanted = samples_before_deadline(control.time_limit_seconds - elapsed(),
+                                                             renderer.seconds_per_sample(), wanted);
+                        done += renderer.render_samples(wanted);
+                        shared.progress[me] = done;
+                        report_progress();
+                        const bool cancel = control.cancelled && control.cancelled();
+                        const bool late = limited && elapsed() >= control.time_limit_seconds && done < range.count;
+                        if (cancel || late) {
+                            std::lock_guard lock(shared.mutex);
+                            if (cancel) shared.cancelled = true;
+                            if (late && !cancel) shared.timed_out = true;
+                            shared.stop = true;
+                            shared.changed.notify_all();
+                            stopped = done < range.count;
+                            if (stopped) break;
                         }
-                        shared.changed.wait_for(lock, std::chrono::milliseconds(20));
                     }
-                    shared.running[n].insert(me);
-                    mine.push_back(n);
-                    pixels = shared.pixels;
-                }
+                    const double chunk_seconds = seconds_between(chunk_start, Clock::now());
+                    report.busy_seconds += chunk_seconds;
+                    report.samples += done;
+                    if (done > 0 && report.busy_seconds > 0)
+                        shared.seconds_per_sample[me] = report.busy_seconds / double(report.samples);
+                    shared.progress[me] = 0;
 
-                const ChunkRange range = plan.chunk(n);
-                const auto chunk_start = Clock::now();
-                shared.chunk_started[me] = seconds_between(start, chunk_start);
-                if (pixels != selected) {
-                    if (pixels) renderer.select_pixels(*pixels);
-                    else renderer.select_all_pixels();
-                    selected = pixels;
-                }
-                renderer.clear(range.first);
-                std::uint32_t done = 0;
-                bool abandoned = false;
-                bool stopped = false;
-                while (done < range.count) {
-                    if (shared.finished[n].load() || shared.stop.load()) {
-                        abandoned = shared.finished[n].load();
-                        stopped = !abandoned;
-                        break;
-                    }
-                    std::uint32_t wanted = range.count - done;
-                    if (limited)
-                        wanted = samples_before_deadline(control.time_limit_seconds - elapsed(),
-                                                         renderer.seconds_per_sample(), wanted);
-                    done += renderer.render_samples(wanted);
-                    shared.progress[me] = done;
-                    report_progress();
-                    const bool cancel = control.cancelled && control.cancelled();
-                    const bool late = limited && elapsed() >= control.time_limit_seconds && done < range.count;
-                    if (cancel || late) {
+                    bool deliver = false;
+                    bool truncated = false;
+                    {
                         std::lock_guard lock(shared.mutex);
-                        if (cancel) shared.cancelled = true;
-                        if (late && !cancel) shared.timed_out = true;
-                        shared.stop = true;
+                        shared.running[n].erase(me);
+                        if (shared.running[n].empty()) shared.running.erase(n);
+                        mine.erase(std::find(mine.begin(), mine.end(), n));
+                        if (!abandoned && done == range.count && !shared.finished[n]) {
+                            shared.finished[n] = true;
+                            ++shared.finished_count;
+                            deliver = true;
+                        } else if (stopped && done > 0 && !shared.finished[n]) {
+                            truncated = true;
+                        }
                         shared.changed.notify_all();
-                        stopped = done < range.count;
-                        if (stopped) break;
                     }
-                }
-                const double chunk_seconds = seconds_between(chunk_start, Clock::now());
-                report.busy_seconds += chunk_seconds;
-                report.samples += done;
-                if (done > 0 && report.busy_seconds > 0)
-                    shared.seconds_per_sample[me] = report.busy_seconds / double(report.samples);
-                shared.progress[me] = 0;
-
-                bool deliver = false;
-                bool truncated = false;
-                {
-                    std::lock_guard lock(shared.mutex);
-                    shared.running[n].erase(me);
-                    if (shared.running[n].empty()) shared.running.erase(n);
-                    mine.erase(std::find(mine.begin(), mine.end(), n));
-                    if (!abandoned && done == range.count && !shared.finished[n]) {
-                        shared.finished[n] = true;
-                        ++shared.finished_count;
-                        deliver = true;
-                    } else if (stopped && done > 0 && !shared.finished[n]) {
-                        truncated = true;
+                    if (deliver) {
+                        ++report.chunks;
+                        if (backup) ++report.backups;
+                        report.finished_at = seconds_between(start, Clock::now());
+                        shared.complete_samples += range.count;
+                        handoff.hand_off(renderer, [&shared, &sink, &rounds, range](FilmSums&& sums) {
+                            std::lock_guard lock(shared.sink_mutex);
+                            sink(range, std::move(sums), true);
+                            ++shared.sunk_count;
+                            if (rounds.active()) start_next_round_if_due(shared);
+                        });
+                    } else if (truncated) {
+                        ChunkRange cut = range;
+                        cut.count = done;
+                        FilmSums sums = renderer.sums(with_squares);
+                        std::lock_guard lock(shared.sink_mutex);
+                        sink(cut, std::move(sums), false);
                     }
-                    shared.changed.notify_all();
+                    if (stopped) return;
                 }
-                if (deliver) {
-                    ++report.chunks;
-                    if (backup) ++report.backups;
-                    report.finished_at = seconds_between(start, Clock::now());
-                    shared.complete_samples += range.count;
-                    FilmSums sums = renderer.sums(control.with_squares || rounds.active());
-                    std::lock_guard lock(shared.sink_mutex);
-                    sink(range, std::move(sums), true);
-                    ++shared.sunk_count;
-                    if (rounds.active()) start_next_round_if_due(shared);
-                } else if (truncated) {
-                    ChunkRange cut = range;
-                    cut.count = done;
-                    FilmSums sums = renderer.sums(control.with_squares || rounds.active());
-                    std::lock_guard lock(shared.sink_mutex);
-                    sink(cut, std::move(sums), false);
-                }
-                if (stopped) return;
-            }
+            };
+            render_chunks_until_done();
+            handoff.wait();
         } catch (...) {
             errors[me] = std::current_exception();
             try {

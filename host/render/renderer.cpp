@@ -195,6 +195,33 @@ FilmSums Renderer::sums(bool with_squares) const
     return out;
 }
 
+cl_event Renderer::copy_sums(const cl::Buffer<glm::vec4>& sums, const cl::Buffer<glm::vec4>* squares,
+                             FilmSums& header) const
+{
+    header = FilmSums{};
+    header.width = m_params.width;
+    header.height = m_params.height;
+    header.sample_counts = pixel_sample_counts();
+    cl_event done = nullptr;
+    const auto copy = [&](const cl::Buffer<glm::vec4>& from, const cl::Buffer<glm::vec4>& to) {
+        if (to.count() != from.count())
+            throw UsageError("a copy of the film needs a buffer of " + std::to_string(from.count()) + " pixels, not " +
+                             std::to_string(to.count()));
+        if (done) clReleaseEvent(done);
+        done = nullptr;
+        GC_CL_WHAT("copying the film", clEnqueueCopyBuffer, m_context.queue(), from.mem(), to.mem(), 0, 0,
+                   from.bytes(), 0, nullptr, &done);
+    };
+    try {
+        copy(m_film.sums, sums);
+        if (squares) copy(m_film.squares, *squares);
+    } catch (...) {
+        if (done) clReleaseEvent(done);
+        throw;
+    }
+    return done;
+}
+
 std::vector<std::uint32_t> Renderer::pixel_sample_counts() const
 {
     const std::size_t pixels = std::size_t(m_params.width) * m_params.height;

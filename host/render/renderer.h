@@ -117,6 +117,13 @@ public:
     // Without `with_squares`, `squares` stays empty (half the read-back: the multi-device
     // scheduler's chunks).
     FilmSums sums(bool with_squares = true) const;
+    // Enqueues copies of the film's sums (and, where `squares` is given, of its squares) into
+    // these device buffers of the film's size, after the work enqueued so far and before any
+    // that follows, and returns the event of the last copy (the caller releases it) and, in
+    // `header`, what sums() would return but the radiance arrays: width, height, sample
+    // counts. The renderer can go on at once: the copies are the film as it is now.
+    cl_event copy_sums(const cl::Buffer<glm::vec4>& sums, const cl::Buffer<glm::vec4>* squares,
+                       FilmSums& header) const;
 
 private:
     // Restarts the film and rebuilds what a scene update made stale.
