@@ -240,7 +240,8 @@ ExitCode run_render(const Options& options)
         log_verbose("device " + d.name + ": " + std::to_string(d.chunks) + " chunks (" + std::to_string(d.backups) +
                     " backups), " + std::to_string(d.samples) + " spp rendered, set up in " + fixed(d.setup_seconds, 3) +
                     " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
-                    (d.failure.empty() ? "" : ", failed: " + d.failure));
+                    (d.failure.empty() ? "" : ", failed: " + d.failure) +
+                    (d.left_slow ? ", left the frame: under a tenth of the other devices' rate" : ""));
     const double render_seconds = outcome.seconds;
     if (options.partial) pixel_samples = std::uint64_t(settings.width) * settings.height * samples;
     const double samples_per_second = static_cast<double>(pixel_samples) / std::max(render_seconds, 1e-9);

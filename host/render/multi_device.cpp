@@ -49,12 +49,14 @@ struct Shared {
           finished(plan_.chunk_count()),
           progress(devices),
           chunk_started(devices),
-          seconds_per_sample(devices)
+          seconds_per_sample(devices),
+          pass_rate(devices)
     {
         for (std::uint32_t n = 0; n < ends.front(); ++n) todo.push_back(n);
         for (auto& p : progress) p = 0;
         for (auto& t : chunk_started) t = 0.0;
         for (auto& s : seconds_per_sample) s = 0.0;
+        for (auto& r : pass_rate) r = 0.0;
         reserved.resize(devices);
     }
 
@@ -76,6 +78,7 @@ struct Shared {
     std::vector<std::atomic<std::uint32_t>> progress;     // samples of its current chunk, per device
     std::vector<std::atomic<double>> chunk_started;       // when it started its current chunk (frame seconds)
     std::vector<std::atomic<double>> seconds_per_sample;  // per device, 0 = not known yet
+    std::vector<std::atomic<double>> pass_rate;  // samples per second of its last pass; 0: unknown or gone
     std::atomic<bool> stop{false};
     bool cancelled = false;
     bool timed_out = false;
@@ -90,7 +93,35 @@ struct Shared {
     std::uint32_t queued_end() const { return ends[round]; }
     // Whether another round may still be queued (under mutex).
     bool round_pending() const { return !rounds_over && round + 1 < ends.size(); }
+    // The other devices' pass rates together.
+    double others_rate(std::size_t me) const
+    {
+        double sum = 0.0;
+        for (std::size_t i = 0; i < pass_rate.size(); ++i)
+            if (i != me) sum += pass_rate[i].load();
+        return sum;
+    }
 };
+
+// Device `me` leaves the frame (under shared.mutex): its reserved chunks, and those it was
+// rendering that no other device holds and none has finished, go back to the queue in order.
+void leave_frame(Shared& shared, std::size_t me, const std::vector<std::uint32_t>& mine)
+{
+    std::vector<std::uint32_t> back(shared.reserved[me].begin(), shared.reserved[me].end());
+    shared.reserved[me].clear();
+    for (std::uint32_t n : mine) {
+        shared.running[n].erase(me);
+        if (shared.running[n].empty()) {
+            shared.running.erase(n);
+            if (!shared.finished[n]) back.push_back(n);
+        }
+    }
+    std::sort(back.begin(), back.end());
+    for (auto it = back.rbegin(); it != back.rend(); ++it) shared.todo.push_front(*it);
+    shared.pass_rate[me] = 0.0;
+    --shared.live;
+    shared.changed.notify_all();
+}
 
 // After the sink took a complete chunk (under sink_mutex): if that completed the round, pick
 // the next round's pixels and queue its chunks.
@@ -140,6 +171,8 @@ double backup_gain(double mine_seconds_per_sample, const RunningChunk& chunk)
     // A backup costs this device the whole chunk: worth it only for a clear saving.
     return gain > 0.25 * left ? gain : 0.0;
 }
+
+bool adds_too_little(double mine, double others) { return mine > 0.0 && others > 0.0 && mine < 0.1 * others; }
 
 std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t device_count)
 {
@@ -285,6 +318,15 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                         done += renderer.render_samples(wanted);
                         shared.progress[me] = done;
                         report_progress();
+                        if (renderer.seconds_per_sample() > 0.0) shared.pass_rate[me] = 1.0 / renderer.seconds_per_sample();
+                        if (adds_too_little(shared.pass_rate[me].load(), shared.others_rate(me))) {
+                            report.busy_seconds += seconds_between(chunk_start, Clock::now());
+                            report.samples += done;
+                            report.left_slow = true;
+                            std::lock_guard lock(shared.mutex);
+                            leave_frame(shared, me, mine);
+                            return;
+                        }
                         const bool cancel = control.cancelled && control.cancelled();
                         const bool late = limited && elapsed() >= control.time_limit_seconds && done < range.count;
                         if (cancel || late) {
@@ -353,20 +395,7 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                 report.failure = "unknown error";
             }
             std::lock_guard lock(shared.mutex);
-            // Its chunks go back to the queue, in order.
-            std::vector<std::uint32_t> back(shared.reserved[me].begin(), shared.reserved[me].end());
-            shared.reserved[me].clear();
-            for (std::uint32_t n : mine) {
-                shared.running[n].erase(me);
-                if (shared.running[n].empty()) {
-                    shared.running.erase(n);
-                    if (!shared.finished[n]) back.push_back(n);
-                }
-            }
-            std::sort(back.begin(), back.end());
-            for (auto it = back.rbegin(); it != back.rend(); ++it) shared.todo.push_front(*it);
-            --shared.live;
-            shared.changed.notify_all();
+            leave_frame(shared, me, mine);
         }
     };
 

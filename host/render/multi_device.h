@@ -16,7 +16,8 @@
 // which is then all a frame rendered on mixed devices promises.
 //
 // A device that fails (its driver, its memory) drops out with a warning; its chunks go back to
-// the queue. The frame fails only when no device is left.
+// the queue. The frame fails only when no device is left. A device far slower than the others
+// leaves the frame after its first pass, its chunk going back to the queue (adds_too_little).
 #pragma once
 
 #include <cstdint>
@@ -52,6 +53,7 @@ struct DeviceReport {
     double busy_seconds = 0;    // rendering
     double finished_at = 0;     // seconds from the frame's start to the device's last chunk
     std::string failure;        // why it dropped out; empty if it did not
+    bool left_slow = false;     // left the frame as too slow to help (adds_too_little)
 };
 
 struct FrameOutcome {
@@ -99,6 +101,13 @@ struct RunningChunk {
 // rate, its chunk tells: elapsed / done per sample, or, while not even one pass is done, as
 // long again as it has taken so far (so a slow device's first chunk is backed up too).
 double backup_gain(double mine_seconds_per_sample, const RunningChunk& chunk);
+
+// Whether a device that renders `mine` samples per second should leave a frame the other
+// devices render at `others` samples per second together: when it would add under a tenth of
+// their rate. Driving a GPU takes host threads, and a CPU device busy on every other core slows
+// them: on the H200 machine by more than PoCL added (docs/performance.md, "Several devices on
+// one frame"). False while either rate is unknown (0).
+bool adds_too_little(double mine, double others);
 
 // Renders every chunk of `plan` (until `control` stops it, or `rounds` ends it early) on
 // `devices`, handing each to `sink`. Throws the first device's error when every device failed,

@@ -187,5 +187,18 @@ TEST(BackupGain, AFastIdleDeviceBacksUpASlowHolder)
     EXPECT_EQ(backup_gain(0.0, c), 0.0);
 }
 
+// A CPU at 1/50 of a GPU's rate leaves; one at a third of it, or with either rate unknown, stays;
+// the faster device never leaves.
+TEST(AddsTooLittle, OnlyADeviceUnderATenthOfTheOthersLeaves)
+{
+    EXPECT_TRUE(adds_too_little(20.0, 1000.0));
+    EXPECT_FALSE(adds_too_little(1000.0, 20.0));
+    EXPECT_FALSE(adds_too_little(330.0, 1000.0));
+    EXPECT_FALSE(adds_too_little(0.0, 1000.0));
+    EXPECT_FALSE(adds_too_little(20.0, 0.0));
+    EXPECT_TRUE(adds_too_little(99.0, 1000.0));
+    EXPECT_FALSE(adds_too_little(100.0, 1000.0));
+}
+
 }  // namespace
 }  // namespace gc

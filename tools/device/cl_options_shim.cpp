@@ -7,10 +7,13 @@
 // for, so a cached binary would hide the rewrite.
 //   g++ -std=c++20 -shared -fPIC -O2 -I .deps/include tools/device/cl_options_shim.cpp -o shim.so -ldl
 //   LD_PRELOAD=$PWD/shim.so GEOCOLD_NO_CACHE=1 GEOCOLD_SHIM_REMOVE=... geocold-cl ...
+// GEOCOLD_SHIM_DUMP=<folder> also writes each built program's binary there (program-N.bin, the
+// build's order; PTX on NVIDIA, for `ptxas -v`: registers, stack frame and spills per kernel).
 #define CL_TARGET_OPENCL_VERSION 120
 #include <CL/cl.h>
 #include <dlfcn.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -42,6 +45,25 @@ std::string rewrite(const char* options)
     return out;
 }
 
+// Writes the program's binary for its first device to GEOCOLD_SHIM_DUMP/program-N.bin.
+void dump_binary(cl_program program)
+{
+    static std::atomic<int> count{0};
+    const char* folder = std::getenv("GEOCOLD_SHIM_DUMP");
+    if (!folder) return;
+    size_t size = 0;
+    if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, nullptr) != CL_SUCCESS || size == 0)
+        return;
+    std::vector<unsigned char> binary(size);
+    unsigned char* pointers[1] = {binary.data()};
+    if (clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof pointers, pointers, nullptr) != CL_SUCCESS) return;
+    const std::string path = std::string(folder) + "/program-" + std::to_string(count++) + ".bin";
+    if (FILE* f = std::fopen(path.c_str(), "wb")) {
+        std::fwrite(binary.data(), 1, binary.size(), f);
+        std::fclose(f);
+    }
+}
+
 }  // namespace
 
 extern "C" CL_API_ENTRY cl_int CL_API_CALL clBuildProgram(cl_program program, cl_uint num_devices,
@@ -55,5 +77,7 @@ extern "C" CL_API_ENTRY cl_int CL_API_CALL clBuildProgram(cl_program program, cl
     if (!next) return CL_INVALID_OPERATION;
     const std::string rewritten = rewrite(options);
     if (std::getenv("GEOCOLD_SHIM_VERBOSE")) std::fprintf(stderr, "cl_options_shim: %s\n", rewritten.c_str());
-    return next(program, num_devices, device_list, rewritten.c_str(), notify, user_data);
+    const cl_int status = next(program, num_devices, device_list, rewritten.c_str(), notify, user_data);
+    if (status == CL_SUCCESS) dump_binary(program);
+    return status;
 }
