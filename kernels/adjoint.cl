@@ -43,6 +43,21 @@ static float3 gc_adjoint_path(const GcRenderParams params, GC_SCENE_PARAMS, GcGr
     return GC_XYZ(path.radiance);
 }
 
+/* Every sample of one pixel: its path for L, then its derivatives. */
+static void gc_adjoint_pixel(const GcRenderParams params, GC_SCENE_PARAMS, GcGradTarget g, const uint pixel,
+                             const float3 delta)
+{
+    for (uint k = 0u; k < params.samples_in_pass; ++k) {
+        const uint sample = params.sample_index + k;
+        const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
+        const GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
+                                           pixel / params.width, jitter);
+        const float3 L = gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, false, (float3)(0.0f), delta);
+        if (!(isfinite(L.x) && isfinite(L.y) && isfinite(L.z))) continue;
+        gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, true, L, delta);
+    }
+}
+
 __kernel void path_adjoint(const GcRenderParams params,
                            GC_SCENE_PARAMS,
                            __global const float4* loss_grad,
@@ -54,11 +69,6 @@ __kernel void path_adjoint(const GcRenderParams params,
                            const uint slot_count,
                            const uint view_count)
 {
-    const uint item = get_global_id(0);
-    if (item >= params.pixel_count) return;
-    const uint pixel = params.pixel_offset + item;
-    const float3 delta = loss_grad[pixel].xyz;
-    if (delta.x == 0.0f && delta.y == 0.0f && delta.z == 0.0f) return;
     GcGradTarget g;
     g.slots = slots;
     g.max_bits = max_bits;
@@ -67,13 +77,26 @@ __kernel void path_adjoint(const GcRenderParams params,
     g.env_slot = env_slot;
     g.slot_count = slot_count;
     g.view_count = view_count;
-    for (uint k = 0u; k < params.samples_in_pass; ++k) {
-        const uint sample = params.sample_index + k;
-        const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
-        const GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
-                                           pixel / params.width, jitter);
-        const float3 L = gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, false, (float3)(0.0f), delta);
-        if (!(isfinite(L.x) && isfinite(L.y) && isfinite(L.z))) continue;
-        gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, true, L, delta);
+#if GC_GRAD_GROUP_SLOTS > 0
+    /* No work-item returns before the barriers: all of the group must reach them. */
+    __local ulong group_slots[GC_GRAD_GROUP_SLOTS];
+    g.group_slots = group_slots;
+    g.group_count = min(slot_count, GC_GRAD_GROUP_SLOTS);
+    for (uint i = get_local_id(0); i < g.group_count; i += get_local_size(0)) group_slots[i] = 0ul;
+    barrier(CLK_LOCAL_MEM_FENCE);
+#endif
+    const uint item = get_global_id(0);
+    if (item < params.pixel_count) {
+        const uint pixel = params.pixel_offset + item;
+        const float3 delta = loss_grad[pixel].xyz;
+        if (delta.x != 0.0f || delta.y != 0.0f || delta.z != 0.0f)
+            gc_adjoint_pixel(params, GC_SCENE_ARGS, g, pixel, delta);
     }
+#if GC_GRAD_GROUP_SLOTS > 0
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint i = get_local_id(0); i < g.group_count; i += get_local_size(0)) {
+        const ulong sum = group_slots[i];
+        if (sum != 0ul) GC_GRAD_ATOMIC_ADD(__global, slots, i, sum);
+    }
+#endif
 }

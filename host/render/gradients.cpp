@@ -19,6 +19,10 @@ namespace {
 // environment the same two, a texel four (a lookup's four taps may all be that texel).
 constexpr double k_contributions_per_vertex = 4.0;
 
+// The slots a work-group sums in local memory (GroupSums): 4 KiB, the materials' and the
+// environment's of a scene of up to 31 materials.
+constexpr std::uint32_t k_group_slots = 512;
+
 // Slots hold 64-bit signed sums; the scale keeps every possible sum within 2^62.
 constexpr double k_slot_limit = 4611686018427387904.0;  // 2^62
 
@@ -107,8 +111,10 @@ std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layou
 
 }  // namespace
 
-PathAdjoint::PathAdjoint(const Renderer& renderer, SlotAtomics atomics)
-    : m_context(renderer.context()), m_atomics(atomics)
+PathAdjoint::PathAdjoint(const Renderer& renderer, SlotAtomics atomics, GroupSums group_sums)
+    : m_context(renderer.context()),
+      m_atomics(atomics),
+      m_group_sums(group_sums == GroupSums::On || (group_sums == GroupSums::Auto && m_context.device().is_gpu))
 {
     build(renderer);
 }
@@ -118,6 +124,7 @@ void PathAdjoint::build(const Renderer& renderer)
     const DeviceScene& scene = renderer.device_scene();
     std::string options = scene_program_options(scene);
     if (m_atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
+    if (m_group_sums) options += " -D GC_GRAD_GROUP_SLOTS=" + std::to_string(k_group_slots) + "u";
     m_program =
         std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
@@ -183,8 +190,10 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     const double count = static_cast<double>(pixels) * spp * std::max(settings.max_depth, 1u) *
                          k_contributions_per_vertex;
     double bound = max_delta * 256.0;
-    // One work-item per group on CPUs, as the megakernel (megakernel_path.cpp says why).
-    const std::size_t local_size = m_context.device().is_gpu ? 0 : 1;
+    // One work-item per group on CPUs, as the megakernel (megakernel_path.cpp says why), unless
+    // the groups sum their slots.
+    const bool gpu = m_context.device().is_gpu;
+    const std::size_t local_size = gpu ? 0 : (m_group_sums ? 16 : 1);
     std::vector<std::uint64_t> sums(slot_count, 0);
     m_stats = {};
     for (int attempt = 0; attempt < 2; ++attempt) {

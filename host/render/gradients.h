@@ -42,10 +42,17 @@ struct GradientStats {
 // (else two 32-bit ones), or always with two 32-bit ones (to test that way on any device).
 enum class SlotAtomics { Auto, Split32 };
 
+// Whether each work-group sums its additions to the materials' and the environment's slots in
+// local memory and adds those sums once (gc_grad_slots.h): Auto = on GPUs, where every
+// work-item's additions would otherwise meet at the same few addresses; On tests it on any
+// device (in groups of 16 work-items on CPUs). The bits are the same either way.
+enum class GroupSums { Auto, On, Off };
+
 class PathAdjoint {
 public:
     // Builds kernels/adjoint.cl for `renderer`'s scene (again by backward if its features change).
-    explicit PathAdjoint(const Renderer& renderer, SlotAtomics atomics = SlotAtomics::Auto);
+    explicit PathAdjoint(const Renderer& renderer, SlotAtomics atomics = SlotAtomics::Auto,
+                         GroupSums group_sums = GroupSums::Auto);
 
     // d loss / d parameter for every name in `params` (UsageError for names that are unknown
     // or not differentiable), from `spp` samples per pixel (indices 0 .. spp - 1) with `seed`.
@@ -63,6 +70,7 @@ private:
 
     const cl::Context& m_context;
     SlotAtomics m_atomics;
+    bool m_group_sums;
     KernelFeatures m_features;
     std::unique_ptr<cl::Program> m_program;
     cl::Kernel m_kernel;

@@ -562,27 +562,44 @@ TEST_F(GradientTest, RussianRouletteKeepsTheGradientUnbiased)
     }
 }
 
-// Two 32-bit atomics with a carry give the same sums as 64-bit ones, bit for bit.
-TEST_F(GradientTest, SplitAtomicsGiveTheSameBits)
+// Two 32-bit atomics with a carry give the same sums as 64-bit ones, and a work-group's sums
+// in local memory (GroupSums) the same as each work-item's own additions, bit for bit. The
+// floor's 16 x 16 texture puts its texels' slots on both sides of the group's 512.
+TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
 {
     const RenderSettings settings = small_settings();
-    Rig rig(*context, open_box(), box_camera(), settings);
+    Scene scene = textured_box();
+    Texture& t = scene.textures[0];
+    t.width = t.height = 16;
+    t.texels.resize(256);
+    for (std::uint32_t i = 0; i < 256; ++i) t.texels[i] = rgba8(40 + i % 200, 250 - i % 190, 30 + (i * 7) % 220);
+    Rig rig(*context, scene, box_camera(), settings);
     const std::uint32_t pixels = static_cast<std::uint32_t>(settings.width * settings.height);
     std::vector<glm::vec4> weights = loss_weights(pixels);
     for (std::uint32_t i = 0; i < pixels; i += 3)
         weights[i] = -weights[i];  // negative sums borrow through the carry
     std::vector<std::string> names;
     for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
-    PathAdjoint native(*rig.renderer);
-    PathAdjoint split(*rig.renderer, SlotAtomics::Split32);
-    const Gradients a = native.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
-    const Gradients b = split.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
-    for (const std::string& name : names) {
-        std::printf("%-28s %.9g %.9g %.9g\n", name.c_str(), b.at(name)[0], b.at(name)[1],
-                    b.at(name)[2]);
-        EXPECT_EQ(
-            0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float)))
-            << name;
+    ASSERT_EQ(names.back(), "textures/0/texels");
+    PathAdjoint plain(*rig.renderer, SlotAtomics::Auto, GroupSums::Off);
+    const Gradients a = plain.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
+    const struct {
+        const char* what;
+        SlotAtomics atomics;
+        GroupSums group_sums;
+    } ways[] = {{"split atomics", SlotAtomics::Split32, GroupSums::Off},
+                {"group sums", SlotAtomics::Auto, GroupSums::On},
+                {"group sums, split atomics", SlotAtomics::Split32, GroupSums::On}};
+    for (const auto& way : ways) {
+        PathAdjoint other(*rig.renderer, way.atomics, way.group_sums);
+        const Gradients b = other.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
+        for (const std::string& name : names) {
+            ASSERT_EQ(a.at(name).size(), b.at(name).size());
+            std::printf("%-26s %-28s %.9g %.9g %.9g\n", way.what, name.c_str(), b.at(name)[0], b.at(name)[1],
+                        b.at(name)[2]);
+            EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float)))
+                << way.what << ": " << name;
+        }
     }
 }
 
