@@ -388,6 +388,9 @@ Environment:
   GEOCOLD_OIDN_LIBRARY     Open Image Denoise for --denoise (default:
                            /opt/geocold-cl/oidn/lib/libOpenImageDenoise.so.2, where
                            tools/install-deps.sh puts it, else the system's)
+  GEOCOLD_GUARD_BUFFERS=1  a debugging aid on CPU devices: every device buffer ends at an
+                           inaccessible page, so a kernel reading past its end crashes
+                           there (slower; as a GPU would fault) instead of reading on
 
 Exit status:
   0 success   2 bad command line   3 unreadable or malformed input file

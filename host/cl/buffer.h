@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -15,6 +16,7 @@
 
 #include "host/cl/context.h"
 #include "host/cl/error.h"
+#include "host/cl/guarded_memory.h"
 
 namespace gc::cl {
 
@@ -35,6 +37,7 @@ public:
             m_count = std::exchange(other.m_count, 0);
             m_name = std::move(other.m_name);
             m_device_name = std::move(other.m_device_name);
+            m_guarded = std::move(other.m_guarded);
         }
         return *this;
     }
@@ -61,7 +64,7 @@ public:
         const DeviceInfo& device = context.device();
         const auto base = reinterpret_cast<std::uintptr_t>(data.data());
         const bool in_place = device.is_cpu && !data.empty() && device.base_addr_align > 0 &&
-                              base % device.base_addr_align == 0;
+                              base % device.base_addr_align == 0 && !guarded_buffers_enabled();
         if (!in_place) {
             Buffer buffer = create(context, data.size(), CL_MEM_READ_ONLY, std::move(name));
             buffer.write(data);
@@ -121,6 +124,11 @@ private:
     {
         const DeviceInfo& device = context.device();
         Buffer buffer;
+        if (host == nullptr && device.is_cpu && guarded_buffers_enabled()) {
+            buffer.m_guarded = guarded_allocation(bytes == 0 ? sizeof(T) : bytes);
+            host = buffer.m_guarded.get();
+            flags |= CL_MEM_USE_HOST_PTR;
+        }
         buffer.m_mem = GC_CL_CREATE(
             "allocating '" + name + "' (" + format_bytes(bytes) + ") on " + device.device_name,
             clCreateBuffer, context.context(), flags, bytes == 0 ? sizeof(T) : bytes, host);
@@ -144,10 +152,13 @@ private:
     }
     void release() noexcept
     {
+        // Guarded memory goes back to the system: nothing queued may still use it.
+        if (m_guarded && m_queue) clFinish(m_queue);
         if (m_mem) clReleaseMemObject(m_mem);
         if (m_queue) clReleaseCommandQueue(m_queue);
         m_mem = nullptr;
         m_queue = nullptr;
+        m_guarded.reset();
     }
 
     cl_mem m_mem = nullptr;
@@ -155,6 +166,7 @@ private:
     size_t m_count = 0;
     std::string m_name;
     std::string m_device_name;
+    std::shared_ptr<void> m_guarded;  // GEOCOLD_GUARD_BUFFERS: the host memory the buffer lives in
 };
 
 // A read-only device copy of `data`: scene data the kernels only read.
