@@ -11,7 +11,8 @@
 #      figure, contexts and program binaries included);
 #   3. gradient_test with GEOCOLD_TEST_DEVICE=gpu, then =cpu;
 #   4. determinism: per device, two iterations' gradient bits (exit 1 where they differ),
-#      and the largest relative difference between the GPU's and PoCL's (acceptance: 1e-5).
+#      and the largest relative difference between the GPU's and PoCL's (acceptance: 1e-5);
+#   5. on NVIDIA, ptxas -v of the adjoint programs (registers, stack frame, spills).
 # Everything goes to $OUT/gradients.txt (geocold-grad-bench's JSON lines among it), the
 # build's output to $OUT/gradients-build.log, the Mitsuba comparisons' JSON to
 # $OUT/gradients-prb-*.json. The bare preset leaves the bench tools out: GEOCOLD_BUILD_BENCH=ON
@@ -135,5 +136,23 @@ done
 for size in ${sizes//,/ }; do
     step "determinism-$size" "$bench" --device "$gpu,cpu" --no-time --no-memory --determinism --sizes "$size"
 done
+# 5. What NVIDIA's compiler made of the adjoint (issue 43: its textured programs fault on the
+# GPU, the untextured ones do not): the programs of an untextured and of a textured gradient
+# test, dumped by the options shim, through ptxas -v (registers, stack frame, spills).
+if command -v ptxas > /dev/null || [ -x /usr/local/cuda/bin/ptxas ]; then
+    ptxas_bin=$(command -v ptxas || echo /usr/local/cuda/bin/ptxas)
+    g++ -std=c++20 -shared -fPIC -O2 -I .deps/include tools/device/cl_options_shim.cpp -o "$build_abs/shim.so" -ldl
+    for t in FiniteDifferencesAgree TexelGradientsAddUpToTheFactors; do
+        dump="$build_abs/ptx-$t"
+        rm -rf "$dump" && mkdir -p "$dump"
+        LD_PRELOAD="$build_abs/shim.so" GEOCOLD_SHIM_DUMP="$dump" GEOCOLD_TEST_DEVICE=$gpu \
+            "$build_abs/tests/render/gradient_test" --gtest_brief=1 --gtest_filter="*.$t" > /dev/null 2>&1
+        for f in "$dump"/*.bin; do
+            [ -f "$f" ] || continue
+            echo "== ptxas -v, $t, $(basename "$f") ($(grep -c '^\.entry\|\.entry ' "$f") entries)" >> "$log"
+            "$ptxas_bin" -arch=sm_90 -v "$f" -o /dev/null 2>&1 | grep -E "Compiling entry|Function properties|stack frame|registers" >> "$log"
+        done
+    done
+fi
 cat "$log"
 exit "$status"
