@@ -223,6 +223,7 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
             const auto elapsed = [&] { return seconds_between(start, Clock::now()); };
             const bool limited = control.time_limit_seconds > 0.0;
             std::shared_ptr<const std::vector<std::uint32_t>> selected;  // the renderer's pick
+            std::uint32_t passes = 0;
 
             // Returns when the plan is done or the frame stops.
             const auto render_chunks_until_done = [&] {
@@ -318,7 +319,10 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
                         done += renderer.render_samples(wanted);
                         shared.progress[me] = done;
                         report_progress();
-                        if (renderer.seconds_per_sample() > 0.0) shared.pass_rate[me] = 1.0 / renderer.seconds_per_sample();
+                        // Rates from the second pass on: a first pass carries one-time costs (a
+                        // driver's first launch), which must not make a fast device look slow.
+                        if (++passes >= 2 && renderer.seconds_per_sample() > 0.0)
+                            shared.pass_rate[me] = 1.0 / renderer.seconds_per_sample();
                         if (adds_too_little(shared.pass_rate[me].load(), shared.others_rate(me))) {
                             report.busy_seconds += seconds_between(chunk_start, Clock::now());
                             report.samples += done;

@@ -17,7 +17,7 @@
 //
 // A device that fails (its driver, its memory) drops out with a warning; its chunks go back to
 // the queue. The frame fails only when no device is left. A device far slower than the others
-// leaves the frame after its first pass, its chunk going back to the queue (adds_too_little).
+// leaves the frame once its second pass shows it (adds_too_little), its chunk going back to the queue.
 #pragma once
 
 #include <cstdint>
