@@ -14,8 +14,10 @@ bool has_texture(const dev::GcMaterial& m)
                           (m.specular_texture != GC_INVALID || m.specular_color_texture != GC_INVALID);
     const bool sheen = (m.flags & GC_MATF_SHEEN) != 0u &&
                        (m.sheen_color_texture != GC_INVALID || m.sheen_roughness_texture != GC_INVALID);
+    const bool transmission = m.pbr.w > 0.0f && m.transmission_texture != GC_INVALID;
     return m.albedo_texture != GC_INVALID || m.metallic_roughness_texture != GC_INVALID ||
-           m.normal_texture != GC_INVALID || m.emission_texture != GC_INVALID || coat || specular || sheen;
+           m.normal_texture != GC_INVALID || m.emission_texture != GC_INVALID || coat || specular || sheen ||
+           transmission;
 }
 
 // Appends "-D name=value", space-separated from what is there.

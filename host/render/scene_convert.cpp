@@ -210,6 +210,7 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         d.specular_color_texture = slots[kSlotSpecularColor];
         d.sheen_color_texture = slots[kSlotSheenColor];
         d.sheen_roughness_texture = slots[kSlotSheenRoughness];
+        d.transmission_texture = slots[kSlotTransmission];
         out.push_back(d);
     }
     return out;
@@ -279,7 +280,8 @@ TextureViews texture_views(const Scene& scene)
                                       view(m.normal_texture, m.normal_uv), view(m.emission_texture, m.emission_uv),
                                       ref(l.clearcoat_texture), ref(l.clearcoat_roughness_texture),
                                       ref(l.specular_texture), ref(l.specular_color_texture),
-                                      ref(l.sheen_color_texture), ref(l.sheen_roughness_texture)});
+                                      ref(l.sheen_color_texture), ref(l.sheen_roughness_texture),
+                                      ref(l.transmission_texture)});
     }
     return out;
 }

@@ -20,8 +20,8 @@ namespace gc {
 //   KHR_materials_emissive_strength   emissiveStrength
 //   KHR_materials_ior                 ior
 //   KHR_materials_specular            factor, colour and their textures
-//   KHR_materials_transmission        transmissionFactor; refracting (GGX) when rough or with a
-//                                     volume, else thin-walled (gc_bsdf.h)
+//   KHR_materials_transmission        transmissionFactor and transmissionTexture (R); refracting
+//                                     (GGX) when rough or with a volume, else thin-walled (gc_bsdf.h)
 //   KHR_materials_volume              attenuationColor, attenuationDistance (thicknessFactor is
 //                                     for rasterizers and not read)
 //   KHR_mesh_quantization             integer POSITION/NORMAL/TANGENT/TEXCOORD accessors

@@ -481,10 +481,8 @@ private:
                 log_warning(context + ": KHR_materials_clearcoat clearcoatNormalTexture is ignored (the coat uses the "
                                       "base's shading normal)");
         }
-        if (const auto it = m.extensions.find("KHR_materials_transmission");
-            it != m.extensions.end() && it->second.Has("transmissionTexture"))
-            log_warning(context + ": KHR_materials_transmission transmissionTexture is ignored (transmissionFactor "
-                                  "applies to the whole surface)");
+        if (const auto it = m.extensions.find("KHR_materials_transmission"); it != m.extensions.end())
+            read_transmission_texture(it->second, context, resolve, layers);
         if (const auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end())
             read_specular(it->second, context, resolve, layers);
         if (const auto it = m.extensions.find("KHR_materials_volume"); it != m.extensions.end())

@@ -100,4 +100,12 @@ void read_volume(const tinygltf::Value& ext, const std::string& where, PbrLayers
     // length through the mesh, which a path tracer measures by tracing the ray to the far side.
 }
 
+void read_transmission_texture(const tinygltf::Value& ext, const std::string& where, const LayerTextureResolver& texture,
+                               PbrLayers& layers)
+{
+    if (!ext.IsObject()) throw InputError(where + ": KHR_materials_transmission is not an object");
+    layers.transmission_texture =
+        texture_ref(ext, "KHR_materials_transmission", "transmissionTexture", false, where, texture);
+}
+
 }  // namespace gc

@@ -25,6 +25,9 @@ void read_clearcoat(const tinygltf::Value& extension, const std::string& where, 
                     PbrLayers& layers);
 void read_specular(const tinygltf::Value& extension, const std::string& where, const LayerTextureResolver& texture,
                    PbrLayers& layers);
+// KHR_materials_transmission's transmissionTexture (its factor is the material's transmission).
+void read_transmission_texture(const tinygltf::Value& extension, const std::string& where,
+                               const LayerTextureResolver& texture, PbrLayers& layers);
 // KHR_materials_volume: attenuationDistance must be > 0, attenuationColor in [0, 1].
 void read_volume(const tinygltf::Value& extension, const std::string& where, PbrLayers& layers);
 

@@ -59,6 +59,7 @@ struct PbrLayers {
     float sheen_roughness = 0.0f;
     TextureRef sheen_color_texture;  // sRGB rgb
     TextureRef sheen_roughness_texture; // A
+    TextureRef transmission_texture; // KHR_materials_transmission transmissionTexture, R: factor
     bool volume_on = false;          // KHR_materials_volume (thicknessFactor is not kept: see read_volume)
     glm::vec3 attenuation_color{1.0f};
     float attenuation_distance = std::numeric_limits<float>::infinity();

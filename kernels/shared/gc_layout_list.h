@@ -108,6 +108,7 @@ GC_LAYOUT_FIELD(GcMaterial, sheen_roughness_texture)
 GC_LAYOUT_FIELD(GcMaterial, absorption_r)
 GC_LAYOUT_FIELD(GcMaterial, absorption_g)
 GC_LAYOUT_FIELD(GcMaterial, absorption_b)
+GC_LAYOUT_FIELD(GcMaterial, transmission_texture)
 
 GC_LAYOUT_SIZE(GcTexture)
 GC_LAYOUT_FIELD(GcTexture, offset)

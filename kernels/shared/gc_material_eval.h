@@ -57,7 +57,8 @@ GC_FUNC float3 gc_shade_emission(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 }
 
 /* The material with its metallicRoughness texture folded into the factors (glTF: B = metal,
- * G = roughness, linear), so gc_bsdf.h sees plain numbers. */
+ * G = roughness, linear), and its transmissionTexture (R) into the transmission factor, so
+ * gc_bsdf.h sees plain numbers. */
 GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
 {
     GC_SHADE_UNUSED();
@@ -66,6 +67,8 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
         m.pbr.x *= mr.z;
         m.pbr.y *= mr.y;
     }
+    if (GC_USE_TEXTURES != 0 && m.pbr.w > 0.0f && m.transmission_texture != GC_INVALID)
+        m.pbr.w *= gc_texture_sample(GC_TEXELS_ARG, GC_TEXTURE(m.transmission_texture), uv.x, uv.y).x;
     /* The KHR_materials_* layers' textures (channels as their specifications give them);
      * compiled in only where the scene has the layer (#if: two constants in an && warn). */
 #if GC_USE_TEXTURES != 0 && GC_USE_CLEARCOAT != 0

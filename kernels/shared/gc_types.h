@@ -188,6 +188,7 @@ GC_STRUCT(GcMaterial) {
     float absorption_r; /* KHR_materials_volume: sigma_a = -ln(attenuationColor) / attenuationDistance, */
     float absorption_g; /* per unit length and channel (0 without a volume) */
     float absorption_b;
+    uint transmission_texture; /* KHR_materials_transmission transmissionTexture (R: factor) */
 } GC_STRUCT_END(GcMaterial)
 
 #define GC_TEXF_SRGB 1u          /* texels are sRGB-encoded colour */
@@ -374,10 +375,10 @@ static_assert(sizeof(GcTriangle4) == 176 && offsetof(GcTriangle4, prim) == 144);
 static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng) == 48 &&
               offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&
               offsetof(GcTriangleAttribs, flags) == 92 && offsetof(GcTriangleAttribs, tangent) == 96);
-static_assert(sizeof(GcMaterial) == 160 && offsetof(GcMaterial, type) == 64 &&
+static_assert(sizeof(GcMaterial) == 176 && offsetof(GcMaterial, type) == 64 &&
               offsetof(GcMaterial, emission_texture) == 80 && offsetof(GcMaterial, coat) == 96 &&
               offsetof(GcMaterial, sheen) == 112 && offsetof(GcMaterial, coat_roughness_texture) == 128 &&
-              offsetof(GcMaterial, sheen_roughness_texture) == 144);
+              offsetof(GcMaterial, sheen_roughness_texture) == 144 && offsetof(GcMaterial, transmission_texture) == 160);
 static_assert(sizeof(GcTexture) == 48 && offsetof(GcTexture, uv_u) == 16 && offsetof(GcTexture, uv_v) == 32);
 static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);

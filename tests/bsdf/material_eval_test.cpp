@@ -234,5 +234,25 @@ TEST(MaterialEval, LayerTexturesFoldIntoTheirFactorsOnlyWithTheirFlag)
     EXPECT_EQ(on.specular.z, 0.0f);
 }
 
+TEST(MaterialEval, TransmissionTextureScalesTheTransmissionFactor)
+{
+    // KHR_materials_transmission: transmissionTexture R (linear) times transmissionFactor. A
+    // material without transmission leaves the slot unread.
+    OneTriangle s;
+    GcMaterial& m0 = s.materials[0];
+    m0.pbr.w = 0.8f;
+    m0.transmission_texture = s.add_texture(rgba(128, 7, 9), false);
+    auto shade = [&](const GcMaterial& m) {
+        return gc_shade_material(nullptr, s.materials.data(), s.textures.data(), s.texel_data.data(), nullptr, nullptr,
+                                 nullptr, nullptr, nullptr, m, make_float2(0.5f, 0.5f));
+    };
+    EXPECT_NEAR(shade(m0).pbr.w, 0.8f * 128.0f / 255.0f, 1e-6f);
+    m0.transmission_texture = s.add_texture(rgba(255, 0, 0), false);
+    EXPECT_EQ(shade(m0).pbr.w, 0.8f) << "a texel of 1 keeps the factor's bits";
+    m0.pbr.w = 0.0f;
+    m0.transmission_texture = 12345u;  // would read past the views if it were read
+    EXPECT_EQ(shade(m0).pbr.w, 0.0f);
+}
+
 }  // namespace
 }  // namespace gc::dev

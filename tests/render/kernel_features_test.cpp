@@ -72,6 +72,15 @@ TEST(KernelFeatures, LayerTexturesCountOnlyWithTheirLayer)
     }
 }
 
+TEST(KernelFeatures, ATransmissionTextureCountsOnlyWithTransmission)
+{
+    std::vector<dev::GcMaterial> materials{material(GC_MAT_PBR)};
+    materials[0].transmission_texture = 0;
+    EXPECT_FALSE(kernel_features(materials, 0, false).textures) << "transmission 0: the texture is not read";
+    materials[0].pbr.w = 0.5f;
+    EXPECT_TRUE(kernel_features(materials, 0, false).textures);
+}
+
 TEST(KernelFeatures, AllBuildsTheFullProgram)
 {
     const std::vector<dev::GcMaterial> materials{material(GC_MAT_LAMBERT)};

@@ -362,21 +362,40 @@ TEST(GltfSynthetic, MaterialFactorsAndExtensions)
     EXPECT_EQ(m.alpha_cutoff, 0.25f);
 }
 
-// transmissionTexture is not read yet: the loader says so rather than dropping it silently.
-TEST(GltfSynthetic, TransmissionTextureIsNamedAsIgnored)
+// KHR_materials_transmission's transmissionTexture is read as a linear texture with its
+// transform (R scales transmissionFactor, gc_material_eval.h); a bad reference is refused.
+TEST(GltfSynthetic, TransmissionTextureIsRead)
 {
     ScratchDir dir;
+    dir.write("t.ppm", std::string("P6\n1 1\n255\n") + "\x80\x10\x10");
     Doc doc;
     doc.primitive_extra = R"(, "indices": 2, "material": 0)";
     doc.top = R"("materials": [{"name": "m", "extensions": {"KHR_materials_transmission":
-        {"transmissionFactor": 0.9, "transmissionTexture": {"index": 0}}}}],
-        "extensionsUsed": ["KHR_materials_transmission"],)";
+        {"transmissionFactor": 0.9, "transmissionTexture": {"index": 0,
+         "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}}}}}],
+        "textures": [{"source": 0}], "images": [{"uri": "t.ppm"}],
+        "extensionsUsed": ["KHR_materials_transmission", "KHR_texture_transform"],)";
     testing::internal::CaptureStderr();
     const Scene s = load_scene(write_gltf(dir, doc));
     const std::string err = testing::internal::GetCapturedStderr();
     ASSERT_EQ(s.materials.size(), 1u);
     EXPECT_NEAR(s.materials[0].transmission, 0.9f, 1e-6f);
-    EXPECT_NE(err.find("transmissionTexture is ignored"), std::string::npos) << err;
+    EXPECT_EQ(s.materials[0].layers.transmission_texture.texture, 0);
+    EXPECT_EQ(s.materials[0].layers.transmission_texture.uv.scale, glm::vec2(2.0f));
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_FALSE(s.textures[0].srgb) << "transmission is a linear channel";
+    EXPECT_EQ(err.find("transmissionTexture"), std::string::npos) << err;
+
+    doc.top = R"("materials": [{"name": "m", "extensions": {"KHR_materials_transmission":
+        {"transmissionFactor": 0.9, "transmissionTexture": {"index": "zero"}}}}],
+        "textures": [{"source": 0}], "images": [{"uri": "t.ppm"}],)";
+    try {
+        load_scene(write_gltf(dir, doc));
+        FAIL() << "a transmissionTexture without an integer index was accepted";
+    } catch (const InputError& e) {
+        std::printf("%s\n", e.what());
+        EXPECT_NE(std::string(e.what()).find("transmissionTexture"), std::string::npos) << e.what();
+    }
 }
 
 // The one-triangle document with per-vertex TANGENT (accessor 3, 48 bytes after the 80 of

@@ -212,6 +212,24 @@ TEST_F(CrossCheckLights, TransformedTexturesOnEverySlot)
     expect_agreement("uv transforms on every slot (avocado, constant sky)", scene, s);
 }
 
+// KHR_materials_transmission's transmissionTexture (R scales the factor) over the rough glass
+// cube: half its texels turn transmission off.
+TEST_F(CrossCheckLights, TransmissionTexture)
+{
+    Scene scene = repo_scene("tests/data/scenes/rough-glass-volume/RoughGlassVolume.gltf");
+    Texture t;
+    t.name = "transmission";
+    t.width = t.height = 2;
+    t.srgb = false;
+    t.texels = {0xff000000u, 0xff0000ffu, 0xff000040u, 0xff0000c0u};
+    scene.textures.push_back(t);
+    for (Material& m : scene.materials)
+        if (m.transmission > 0.0f) m.layers.transmission_texture.texture = static_cast<int>(scene.textures.size() - 1);
+    RenderSettings s = small_settings();
+    s.env_radiance = glm::vec3(1.0f);
+    expect_agreement("transmission texture (rough glass cube, constant sky)", scene, s);
+}
+
 // Emitters, a point light and an environment map at once: next-event estimation chooses among
 // all three groups, and MIS weighs emitter and environment hits against that choice.
 TEST_F(CrossCheckLights, AllLightGroups)
