@@ -42,5 +42,17 @@ for d in gpu cpu; do
       >> "$out/py-$d.log" 2>&1 && echo "PASSED $d $id" || echo "FAILED $d $id"
   done | tee -a "$out/py-summary.log"
 done
+# PoCL compiling inside the node's Python died with SIGSEGV in pocl_llvm_build_program (session
+# 34; the CLI compiles the same program): which interpreter settings it follows, each with no
+# kernel cache so that PoCL compiles.
+probe() { # label, command...
+  GEOCOLD_NO_CACHE=1 POCL_KERNEL_CACHE=0 "$@" --device cpu --res 32x24 --spp 2 "$PWD/scenes/cornell-box/CornellBox-Original.obj" \
+    -o /tmp/probe.pfm > /dev/null 2>&1
+  echo "python PoCL compile probe, $1: exit $?" | tee -a "$out/py-summary.log"
+}
+probe "python3 -m geocold" python3 -m geocold
+probe "python3 -S" python3 -S -m geocold
+probe "LC_ALL=C" env LC_ALL=C LANG=C python3 -m geocold
+[ ! -x /usr/bin/python3 ] || probe "/usr/bin/python3" /usr/bin/python3 -m geocold
 echo "$(grep -c PASSED "$out/py-summary.log") passed, $(grep -c FAILED "$out/py-summary.log") failed"
 ! grep -q FAILED "$out/py-summary.log"
