@@ -119,6 +119,7 @@ void leave_frame(Shared& shared, std::size_t me, const std::vector<std::uint32_t
     std::sort(back.begin(), back.end());
     for (auto it = back.rbegin(); it != back.rend(); ++it) shared.todo.push_front(*it);
     shared.pass_rate[me] = 0.0;
+    shared.progress[me] = 0;  // its part-done chunk no longer counts towards the frame's progress
     --shared.live;
     shared.changed.notify_all();
 }
