@@ -19,6 +19,7 @@ namespace gc {
 //                                     coat normal texture is ignored with a warning
 //   KHR_materials_emissive_strength   emissiveStrength
 //   KHR_materials_ior                 ior
+//   KHR_materials_sheen               colour, roughness and their textures (Charlie sheen)
 //   KHR_materials_specular            factor, colour and their textures
 //   KHR_materials_transmission        transmissionFactor and transmissionTexture (R); refracting
 //                                     (GGX) when rough or with a volume, else thin-walled (gc_bsdf.h)
@@ -27,10 +28,11 @@ namespace gc {
 //   KHR_mesh_quantization             integer POSITION/NORMAL/TANGENT/TEXCOORD accessors
 //                                     (gltf_accessor.cpp)
 //   KHR_texture_transform             offset, rotation, scale, texCoord on every texture slot
-inline constexpr std::array<std::string_view, 9> k_supported_gltf_extensions = {
+inline constexpr std::array<std::string_view, 10> k_supported_gltf_extensions = {
     "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
-    "KHR_materials_ior",          "KHR_materials_specular",  "KHR_materials_transmission",
-    "KHR_materials_volume",       "KHR_mesh_quantization",   "KHR_texture_transform"};
+    "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
+    "KHR_materials_transmission", "KHR_materials_volume",    "KHR_mesh_quantization",
+    "KHR_texture_transform"};
 
 bool gltf_extension_supported(std::string_view name);
 

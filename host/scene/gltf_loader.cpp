@@ -487,6 +487,8 @@ private:
             read_specular(it->second, context, resolve, layers);
         if (const auto it = m.extensions.find("KHR_materials_volume"); it != m.extensions.end())
             read_volume(it->second, context, layers);
+        if (const auto it = m.extensions.find("KHR_materials_sheen"); it != m.extensions.end())
+            read_sheen(it->second, context, resolve, layers);
     }
 
     // A textureInfo's KHR_texture_transform (identity without one). The spec gives no

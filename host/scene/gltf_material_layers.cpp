@@ -108,4 +108,17 @@ void read_transmission_texture(const tinygltf::Value& ext, const std::string& wh
         texture_ref(ext, "KHR_materials_transmission", "transmissionTexture", false, where, texture);
 }
 
+void read_sheen(const tinygltf::Value& ext, const std::string& where, const LayerTextureResolver& texture,
+                PbrLayers& layers)
+{
+    const std::string ctx = where + ": KHR_materials_sheen";
+    if (!ext.IsObject()) throw InputError(ctx + " is not an object");
+    layers.sheen_on = true;
+    layers.sheen_color = colour(ext, "sheenColorFactor", glm::vec3(0.0f), ctx);
+    layers.sheen_roughness = factor(ext, "sheenRoughnessFactor", 0.0f, ctx);
+    const char* name = "KHR_materials_sheen";
+    layers.sheen_color_texture = texture_ref(ext, name, "sheenColorTexture", true, where, texture);
+    layers.sheen_roughness_texture = texture_ref(ext, name, "sheenRoughnessTexture", false, where, texture);
+}
+
 }  // namespace gc

@@ -1,4 +1,4 @@
-// The KHR_materials_clearcoat and KHR_materials_specular objects of one glTF material, read
+// The KHR_materials_clearcoat, _specular and _sheen objects of one glTF material, read
 // into PbrLayers. Values the specifications do not allow (a factor that is not a number, out
 // of [0, 1], a colour that is not three non-negative numbers, a texture reference without an
 // integer index) are refused with an InputError naming the material and the key.
@@ -30,5 +30,7 @@ void read_transmission_texture(const tinygltf::Value& extension, const std::stri
                                const LayerTextureResolver& texture, PbrLayers& layers);
 // KHR_materials_volume: attenuationDistance must be > 0, attenuationColor in [0, 1].
 void read_volume(const tinygltf::Value& extension, const std::string& where, PbrLayers& layers);
+void read_sheen(const tinygltf::Value& extension, const std::string& where, const LayerTextureResolver& texture,
+                PbrLayers& layers);
 
 }  // namespace gc

@@ -47,6 +47,7 @@
 #include "gc_sampling.h"
 #include "gc_pow.h"
 #include "gc_trig.h"
+#include "gc_sheen_table.h"
 
 GC_NAMESPACE_BEGIN
 
@@ -185,12 +186,21 @@ GC_FUNC float gc_phong_pdf_upper(float p_spec, float exponent, float3 wo, float3
  * per channel, the specular lobe weighted by specular * F_s and the base by
  * 1 - specular * max(F_s). Without the extension the three channels are F_d.
  *
+ * KHR_materials_sheen (GC_MATF_SHEEN) adds a sheen lobe over the base, with the spec's
+ * albedo scaling of what lies beneath:
+ *   f_sheened = sheenColor D_s V_s + f * min(1 - max(sheenColor) E(|n.wo|), 1 - max(sheenColor) E(|n.wi|))
+ * D_s the "Charlie" distribution (2 + 1/a) sin(theta_h)^(1/a) / (2 pi) with a = sheenRoughness^2
+ * (roughness clamped to GC_SHEEN_MIN_ROUGHNESS), V_s = 1 / ((1 + Lambda(wo) + Lambda(wi)) 4 |n.wo| |n.wi|)
+ * with Estevez & Kulla's fitted Lambda (2017, "Production Friendly Microfacet Sheen BRDF"), and E
+ * the lobe's directional albedo for a white colour, tabulated (gc_sheen_table.h). Sampled
+ * uniformly over the hemisphere.
+ *
  * KHR_materials_clearcoat (GC_MATF_CLEARCOAT) puts a GGX coat (ior 1.5, alpha =
  * clearcoatRoughness^2) over all of the above, as the spec's fresnel_coat:
  *   f_coated = f * (1 - c F_c) + c F_c D_c G2_c / (4 |n.wo| |n.wi|),  F_c = 0.04 + 0.96 (1 - |n.wo|)^5
  * with c the clearcoat factor. F_c is taken at wo alone, so a coated f is not reciprocal (the
  * spec's choice). The coat shares the base's shading normal: clearcoatNormalTexture is not
- * modelled (the loader warns).
+ * modelled (the loader warns). The coat lies over the sheen.
  *
  * KHR_materials_transmission at roughness 0 is thin-walled: a DELTA lobe straight through the
  * surface (wi = -wo), weight (1 - metallic) * transmission * (1 - F_d(|wo.z|)) * base, the
@@ -366,14 +376,86 @@ GC_FUNC float gc_pbr_coat_weight(GcMaterial m, float cos_o)
     return clamp(m.coat.x, 0.0f, 1.0f) * (0.04f + 0.96f * gc_schlick_weight(cos_o));
 }
 
-/* Probability of sampling the coat: its weight against the base lobes' weights scaled by
- * what the coat lets through. */
-GC_FUNC float gc_pbr_coat_prob(GcMaterial m, float3 base, float cos_o)
+/* ---- KHR_materials_sheen */
+
+#define GC_SHEEN_MIN_ROUGHNESS 0.07f
+
+GC_FUNC float gc_sheen_roughness(GcMaterial m) { return clamp(m.sheen.w, GC_SHEEN_MIN_ROUGHNESS, 1.0f); }
+
+/* Charlie distribution at the half vector's cosine, alpha = roughness^2. */
+GC_FUNC float gc_sheen_d(float cos_h, float alpha)
+{
+    const float inv = 1.0f / alpha;
+    const float sin2 = fmax(0.0f, 1.0f - cos_h * cos_h);
+    return (2.0f + inv) * gc_pow(sin2, 0.5f * inv) * GC_INV_2PI;
+}
+
+/* Estevez & Kulla's fit L(x) = a / (1 + b x^c) + d x + e, its coefficients interpolated between
+ * the fits for roughness 1 and 0 by (1 - alpha)^2. */
+GC_FUNC float gc_sheen_fit(float x, float alpha)
+{
+    const float t = (1.0f - alpha) * (1.0f - alpha);
+    const float a = 21.5473f + (25.3245f - 21.5473f) * t;
+    const float b = 3.82987f + (3.32435f - 3.82987f) * t;
+    const float c = 0.19823f + (0.16801f - 0.19823f) * t;
+    const float d = -1.97760f + (-1.27393f + 1.97760f) * t;
+    const float e = -4.32054f + (-4.85967f + 4.32054f) * t;
+    return a / (1.0f + b * gc_pow(x, c)) + d * x + e;
+}
+
+/* Lambda(theta) = exp(L(cos)) below cos 1/2, mirrored as exp(2 L(1/2) - L(1 - cos)) above. */
+GC_FUNC float gc_sheen_lambda(float cos_theta, float alpha)
+{
+    const float x = fabs(cos_theta);
+    const float l = x < 0.5f ? gc_sheen_fit(x, alpha) : 2.0f * gc_sheen_fit(0.5f, alpha) - gc_sheen_fit(1.0f - x, alpha);
+    return gc_exp2(l * 1.44269504f);
+}
+
+/* The sheen lobe for a white colour, wo and wi in the upper hemisphere. */
+GC_FUNC float gc_sheen_eval_white(float3 wo, float3 wi, float roughness)
+{
+    const float alpha = roughness * roughness;
+    const float3 wm = gc_normalize(wo + wi);
+    const float v = 1.0f / ((1.0f + gc_sheen_lambda(wo.z, alpha) + gc_sheen_lambda(wi.z, alpha)) * 4.0f * wo.z * wi.z);
+    return gc_sheen_d(wm.z, alpha) * v;
+}
+
+/* E(cos, roughness) from gc_sheen_table.h, bilinear. */
+GC_FUNC float gc_sheen_albedo(float cos_theta, float roughness)
+{
+    const float x = clamp(fabs(cos_theta), 0.0f, 1.0f) * gc_float(GC_SHEEN_TABLE_COS - 1);
+    const float y = clamp(roughness, 0.0f, 1.0f) * gc_float(GC_SHEEN_TABLE_ROUGH - 1);
+    const int x0 = gc_int(fmin(x, gc_float(GC_SHEEN_TABLE_COS - 2)));
+    const int y0 = gc_int(fmin(y, gc_float(GC_SHEEN_TABLE_ROUGH - 2)));
+    const float fx = x - gc_float(x0);
+    const float fy = y - gc_float(y0);
+    const int i = y0 * GC_SHEEN_TABLE_COS + x0;
+    const float e0 = gc_sheen_albedo_table[i] * (1.0f - fx) + gc_sheen_albedo_table[i + 1] * fx;
+    const float e1 = gc_sheen_albedo_table[i + GC_SHEEN_TABLE_COS] * (1.0f - fx) + gc_sheen_albedo_table[i + GC_SHEEN_TABLE_COS + 1] * fx;
+    return e0 * (1.0f - fy) + e1 * fy;
+}
+
+/* max(sheenColor) E(cos): the share the sheen takes from the layers beneath (0 without sheen). */
+GC_FUNC float gc_pbr_sheen_weight(GcMaterial m, float cos_theta)
+{
+    if (!gc_pbr_has(m, GC_USE_SHEEN, GC_MATF_SHEEN)) return 0.0f;
+    const float c = fmax(gc_max_component(GC_XYZ(m.sheen)), 0.0f);
+    return clamp(c * gc_sheen_albedo(cos_theta, gc_sheen_roughness(m)), 0.0f, 1.0f);
+}
+
+/* Probabilities (coat, sheen) of sampling each layer for wo.z = cos_o: each layer's weight
+ * against what lies beneath, scaled by what the layer lets through. */
+GC_FUNC float2 gc_pbr_layer_probs(GcMaterial m, float3 base, float cos_o)
 {
     const float wc = gc_pbr_coat_weight(m, cos_o);
-    if (!(wc > 0.0f)) return 0.0f;
+    const float ws = gc_pbr_sheen_weight(m, cos_o);
+    if (!(wc > 0.0f) && !(ws > 0.0f)) return make_float2(0.0f, 0.0f);
     const float3 w = gc_pbr_lobe_weights(m, base, cos_o);
-    return wc / (wc + (1.0f - wc) * (w.x + w.y + w.z));
+    const float below_sheen = w.x + w.y + w.z;
+    const float ps = ws > 0.0f ? ws / (ws + (1.0f - ws) * below_sheen) : 0.0f;
+    const float below_coat = ws > 0.0f ? ws + (1.0f - ws) * below_sheen : below_sheen;
+    const float pc = wc > 0.0f ? wc / (wc + (1.0f - wc) * below_coat) : 0.0f;
+    return make_float2(pc, ps);
 }
 
 /* Non-delta part of the base (everything below the coat) for wo, wi in the upper hemisphere. */
@@ -396,7 +478,12 @@ GC_FUNC float3 gc_pbr_base_eval_upper(GcMaterial m, float3 base, float3 wo, floa
 /* Non-delta part of f for wo, wi both in the upper hemisphere. */
 GC_FUNC float3 gc_pbr_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
 {
-    const float3 f = gc_pbr_base_eval_upper(m, base, wo, wi);
+    float3 f = gc_pbr_base_eval_upper(m, base, wo, wi);
+    if (gc_pbr_has(m, GC_USE_SHEEN, GC_MATF_SHEEN)) {
+        const float scale = fmin(1.0f - gc_pbr_sheen_weight(m, wo.z), 1.0f - gc_pbr_sheen_weight(m, wi.z));
+        const float3 colour = fmax(GC_XYZ(m.sheen), make_float3(0.0f, 0.0f, 0.0f));
+        f = f * scale + colour * gc_sheen_eval_white(wo, wi, gc_sheen_roughness(m));
+    }
     const float wc = gc_pbr_coat_weight(m, wo.z);
     if (!(wc > 0.0f)) return f;
     const float alpha = gc_pbr_coat_alpha(m);
@@ -408,10 +495,11 @@ GC_FUNC float3 gc_pbr_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi
 GC_FUNC float gc_pbr_pdf_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
 {
     const float3 p = gc_pbr_lobe_probs(m, base, wo.z);
-    const float pdf = p.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_alpha(m)) + p.y * gc_cosine_hemisphere_pdf(wi.z);
-    const float pc = gc_pbr_coat_prob(m, base, wo.z);
-    if (!(pc > 0.0f)) return pdf;
-    return pc * gc_ggx_reflection_pdf(wo, wi, gc_pbr_coat_alpha(m)) + (1.0f - pc) * pdf;
+    float pdf = p.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_alpha(m)) + p.y * gc_cosine_hemisphere_pdf(wi.z);
+    const float2 layers = gc_pbr_layer_probs(m, base, wo.z);
+    if (layers.y > 0.0f) pdf = layers.y * GC_INV_2PI + (1.0f - layers.y) * pdf;
+    if (layers.x > 0.0f) pdf = layers.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_coat_alpha(m)) + (1.0f - layers.x) * pdf;
+    return pdf;
 }
 
 /* ---- KHR_materials_transmission with roughness (GC_MATF_ROUGH_TRANSMISSION) */
@@ -459,7 +547,8 @@ GC_FUNC float3 gc_pbr_rough_transmission_eval_lower(GcMaterial m, float3 base, f
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
     const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(gc_pbr_fresnel_cos(m, dot_o))));
     const float wc = gc_pbr_coat_weight(m, wo.z);
-    return base * ((1.0f - metallic) * trans * (1.0f - fd) * (1.0f - wc) * btdf);
+    const float ws = gc_pbr_sheen_weight(m, wo.z);
+    return base * ((1.0f - metallic) * trans * (1.0f - fd) * (1.0f - wc) * (1.0f - ws) * btdf);
 }
 
 /* Density of gc_pbr_sample_rough_transmission's wi, given the lobe was chosen: the visible
@@ -522,7 +611,8 @@ GC_FUNC float gc_bsdf_pdf(GcMaterial m, float3 albedo, float3 wo, float3 wi)
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
     if (gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m) && wo.z > 0.0f && wi.z < 0.0f) {
-        const float p_trans = (1.0f - gc_pbr_coat_prob(m, albedo, wo.z)) * gc_pbr_lobe_probs(m, albedo, wo.z).z;
+        const float2 layers = gc_pbr_layer_probs(m, albedo, wo.z);
+        const float p_trans = (1.0f - layers.x) * (1.0f - layers.y) * gc_pbr_lobe_probs(m, albedo, wo.z).z;
         return p_trans * gc_pbr_rough_transmission_pdf_lower(m, wo, wi, gc_pbr_transmission_eta(m, side));
     }
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
@@ -599,6 +689,8 @@ GC_FUNC GcBsdfSample gc_pbr_sample_transmission(GcMaterial m, float3 base, float
     float3 t = base * ((1.0f - metallic) * trans * (1.0f - fd));
     const float wc = gc_pbr_coat_weight(m, cos_o);
     if (wc > 0.0f) t = t * (1.0f - wc);
+    const float ws = gc_pbr_sheen_weight(m, cos_o);
+    if (ws > 0.0f) t = t * (1.0f - ws);
     GcBsdfSample s;
     s.wi = -wo;
     s.f = t * (1.0f / cos_o);
@@ -643,12 +735,20 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
             wi_up = gc_sample_cosine_hemisphere(u1, u2);
         }
     } else if (gc_material_is(m, GC_MAT_PBR)) {
-        /* The coat first (with probability pc), else u0 is rescaled to pick a base lobe. */
-        const float pc = gc_pbr_coat_prob(m, albedo, wo_up.z);
+        /* The coat first, then the sheen, each with its probability; else u0 is rescaled to
+         * pick the next layer down. */
+        const float2 layers = gc_pbr_layer_probs(m, albedo, wo_up.z);
+        const float pc = layers.x;
+        const float ps = layers.y;
         const bool coat = pc > 0.0f && u0 < pc;
         if (pc > 0.0f && !coat) u0 = fmin((u0 - pc) / (1.0f - pc), 0.99999994f);
+        const bool sheen = !coat && ps > 0.0f && u0 < ps;
+        if (ps > 0.0f && !coat && !sheen) u0 = fmin((u0 - ps) / (1.0f - ps), 0.99999994f);
         const float3 p = gc_pbr_lobe_probs(m, albedo, wo_up.z);
-        if (coat || u0 < p.x) {
+        if (sheen) {
+            const float3 w = gc_sample_uniform_sphere(u1, u2);
+            wi_up = make_float3(w.x, w.y, fabs(w.z));
+        } else if (coat || u0 < p.x) {
             const float alpha = coat ? gc_pbr_coat_alpha(m) : gc_pbr_alpha(m);
             const float3 wm = gc_ggx_sample_visible_normal(wo_up, alpha, u1, u2);
             wi_up = wm * (2.0f * gc_dot(wo_up, wm)) - wo_up;
@@ -661,7 +761,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
                 if (!(wi_up.z < 0.0f)) return gc_bsdf_no_sample();
                 return gc_bsdf_finish_sample(m, albedo, wo, gc_bsdf_flip(wi_up, side));
             }
-            return gc_pbr_sample_transmission(m, albedo, wo, (1.0f - pc) * p.z);
+            return gc_pbr_sample_transmission(m, albedo, wo, (1.0f - pc) * (1.0f - ps) * p.z);
         } else {
             wi_up = gc_sample_cosine_hemisphere(u1, u2);
         }

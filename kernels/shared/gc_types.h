@@ -179,7 +179,7 @@ GC_STRUCT(GcMaterial) {
     float normal_scale; /* glTF normalTexture.scale: multiplies the normal map's tangent-space xy */
     uint coat_texture;  /* clearcoatTexture (R: factor) */
     float4 coat;        /* x: clearcoat factor; y: clearcoat roughness; z: 0; w: KHR_materials_specular factor */
-    float4 sheen;       /* rgb: sheen colour (linear); w: sheen roughness */
+    float4 sheen;       /* KHR_materials_sheen: rgb colour (linear); w: roughness */
     uint coat_roughness_texture; /* clearcoatRoughnessTexture (G: roughness) */
     uint specular_texture;       /* specularTexture (A: factor) */
     uint specular_color_texture; /* specularColorTexture (sRGB rgb: colour) */

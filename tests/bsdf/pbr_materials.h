@@ -35,4 +35,11 @@ inline GcMaterial coated(GcMaterial m, float factor, float roughness)
     return m;
 }
 
+inline GcMaterial sheened(GcMaterial m, float3 colour, float roughness)
+{
+    m.flags |= GC_MATF_SHEEN;
+    m.sheen = make_float4(colour.x, colour.y, colour.z, roughness);
+    return m;
+}
+
 }  // namespace gc::dev::test_pbr

@@ -32,6 +32,7 @@ using test_albedo::draw;
 using test_pbr::coated;
 using test_pbr::dir_deg;
 using test_pbr::grey;
+using test_pbr::sheened;
 
 GcMaterial rough_glass(float3 base, float roughness, float transmission, float ior = 1.5f, float metallic = 0.0f)
 {
@@ -56,6 +57,8 @@ std::vector<Case> transmission_cases()
         {"ior 1.33 r.2 inside wo=140", rough_glass(grey(0.8f), 0.2f, 1.0f, 1.33f), dir_deg(140)},
         {"coat .5 r.3 over r.4 trans .8 wo=40", coated(rough_glass(grey(0.9f), 0.4f, 0.8f), 0.5f, 0.3f), dir_deg(40)},
         {"metal .3 r.6 trans 1 wo=75", rough_glass(grey(0.7f), 0.6f, 1.0f, 1.5f, 0.3f), dir_deg(75)},
+        {"sheen .8 r.5 over r.4 trans .8 wo=50", sheened(rough_glass(grey(0.9f), 0.4f, 0.8f), grey(0.8f), 0.5f),
+         dir_deg(50)},
     };
 }
 

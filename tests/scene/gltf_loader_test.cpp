@@ -950,6 +950,8 @@ TEST(GltfMaterialLayers, MalformedValuesAreRefused)
         {R"("KHR_materials_volume": {"attenuationColor": [1, -0.5, 1]})", "attenuationColor holds a value"},
         {R"("KHR_materials_transmission": {"transmissionFactor": 1.5})", "transmissionFactor = 1.5"},
         {R"("KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 0.5})", "ior = 0.5"},
+        {R"("KHR_materials_sheen": {"sheenRoughnessFactor": true})", "sheenRoughnessFactor is not a number"},
+        {R"("KHR_materials_sheen": {"sheenColorFactor": [1, 1, "x"]})", "sheenColorFactor holds a value"},
     };
     for (const auto& [ext, why] : cases) {
         Doc doc;

@@ -389,5 +389,29 @@ TEST_F(VkDeviceTest, ThinLensAgreesWithOpenCl)
     EXPECT_TRUE(r.passed());
 }
 
+// The reference's shaders leave KHR_materials_sheen out (host/vk/CMakeLists.txt): a scene
+// with sheen is refused with the material's name, not rendered without its sheen.
+TEST_F(VkDeviceTest, TheReferenceRefusesSheenByName)
+{
+    SceneRequest request;
+    request.path = std::filesystem::path(GC_TEST_SOURCE_DIR) / "tests/data/scenes/material-layers/MaterialLayers.gltf";
+    PreparedScene prepared = prepare_scene(request);
+    Material& m = prepared.scene.materials[1];
+    ASSERT_EQ(m.type, MaterialType::Pbr);
+    m.layers.sheen_on = true;
+    m.layers.sheen_color = glm::vec3(1.0f);
+    RenderSettings settings;
+    settings.width = 16;
+    settings.height = 16;
+    try {
+        ComputeReference reference(*context, prepared.scene, prepared.bvh, prepared.camera, settings);
+        FAIL() << "a sheen scene was accepted";
+    } catch (const UsageError& e) {
+        std::printf("%s\n", e.what());
+        EXPECT_NE(std::string(e.what()).find("KHR_materials_sheen"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(m.name), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace gc::vk
