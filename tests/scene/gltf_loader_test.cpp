@@ -904,6 +904,36 @@ TEST(GltfConformance, EverySupportedExtensionMayBeRequired)
     EXPECT_EQ(err.find("extension"), std::string::npos) << err;
 }
 
+// KHR_materials_sheen: colour (linear), roughness and their textures (the colour sRGB, the
+// roughness linear), the specification's defaults (no colour: no sheen).
+TEST(GltfMaterialLayers, SheenFactorsTexturesAndDefaults)
+{
+    ScratchDir dir;
+    dir.write("s.ppm", std::string("P6\n1 1\n255\n") + "\x80\x40\x20");
+    Doc doc;
+    doc.primitive_extra = R"(, "indices": 2, "material": 0)";
+    doc.top = R"("materials": [{"name": "velvet", "extensions": {"KHR_materials_sheen": {
+                    "sheenColorFactor": [0.3, 0.5, 1.0], "sheenRoughnessFactor": 0.3,
+                    "sheenColorTexture": {"index": 0}, "sheenRoughnessTexture": {"index": 1}}}},
+                 {"name": "defaults", "extensions": {"KHR_materials_sheen": {}}}],
+                 "textures": [{"source": 0}, {"source": 1}], "images": [{"uri": "s.ppm"}, {"uri": "s.ppm"}],
+                 "extensionsUsed": ["KHR_materials_sheen"],)";
+    const Scene s = load_scene(write_gltf(dir, doc));
+    ASSERT_EQ(s.materials.size(), 2u);
+    const PbrLayers& v = s.materials[0].layers;
+    EXPECT_TRUE(v.sheen_on);
+    EXPECT_EQ(v.sheen_color, glm::vec3(0.3f, 0.5f, 1.0f));
+    EXPECT_NEAR(v.sheen_roughness, 0.3f, 1e-7f);
+    ASSERT_EQ(v.sheen_color_texture.texture, 0);
+    ASSERT_EQ(v.sheen_roughness_texture.texture, 1);
+    EXPECT_TRUE(s.textures[0].srgb) << "sheenColorTexture is sRGB";
+    EXPECT_FALSE(s.textures[1].srgb) << "sheenRoughnessTexture is linear";
+    const PbrLayers& d = s.materials[1].layers;
+    EXPECT_TRUE(d.sheen_on);
+    EXPECT_EQ(d.sheen_color, glm::vec3(0.0f));
+    EXPECT_EQ(d.sheen_roughness, 0.0f);
+}
+
 // KHR_materials_clearcoat and KHR_materials_specular: factors read into Material::layers,
 // defaults from the specifications, malformed values refused naming file, material and key.
 TEST(GltfMaterialLayers, FactorsAndDefaults)
