@@ -36,6 +36,9 @@
 #endif
 #define GC_GLOBAL __global
 #define GC_CONSTANT __constant
+/* A constant float table: GC_FLOAT_TABLE_BEGIN(name, n) v0, v1, ... GC_FLOAT_TABLE_END */
+#define GC_FLOAT_TABLE_BEGIN(name, n) __constant float name[n] = {
+#define GC_FLOAT_TABLE_END };
 #define GC_STRUCT(name) typedef struct name
 #define GC_STRUCT_END(name) name;
 #define make_float2(x, y) ((float2)((x), (y)))
@@ -99,6 +102,8 @@ inline float4 fabs(float4 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs
 #define GC_FUNC inline
 #define GC_GLOBAL
 #define GC_CONSTANT
+#define GC_FLOAT_TABLE_BEGIN(name, n) namespace gc::dev { inline constexpr float name[n] = {
+#define GC_FLOAT_TABLE_END }; }
 /* alignas(16) makes the host struct's size and alignment equal OpenCL's and std430's. */
 #define GC_STRUCT(name) struct alignas(16) name
 #define GC_STRUCT_END(name) ;
@@ -115,6 +120,8 @@ inline float4 fabs(float4 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs
 #define GC_FUNC
 #define GC_GLOBAL
 #define GC_CONSTANT const
+#define GC_FLOAT_TABLE_BEGIN(name, n) const float name[n] = float[n](
+#define GC_FLOAT_TABLE_END );
 #define GC_STRUCT(name) struct name
 #define GC_STRUCT_END(name) ;
 #define float2 vec2

@@ -8,14 +8,7 @@
 
 #include "gc_platform.h"
 
-#if defined(GC_OPENCL)
-__constant float gc_srgb_to_linear_table[256] = {
-#elif defined(GC_HOST)
-namespace gc::dev {
-inline constexpr float gc_srgb_to_linear_table[256] = {
-#else
-const float gc_srgb_to_linear_table[256] = float[256](
-#endif
+GC_FLOAT_TABLE_BEGIN(gc_srgb_to_linear_table, 256)
     0.000000000e+00f, 3.035269840e-04f, 6.070539670e-04f, 9.105809510e-04f, 1.214107930e-03f, 1.517634920e-03f, 1.821161900e-03f, 2.124688880e-03f,
     2.428215870e-03f, 2.731742850e-03f, 3.035269840e-03f, 3.346535760e-03f, 3.676507320e-03f, 4.024717020e-03f, 4.391442040e-03f, 4.776953480e-03f,
     5.181516700e-03f, 5.605391620e-03f, 6.048833020e-03f, 6.512090790e-03f, 6.995410190e-03f, 7.499032040e-03f, 8.023192990e-03f, 8.568125620e-03f,
@@ -48,13 +41,6 @@ const float gc_srgb_to_linear_table[256] = float[256](
     8.069522580e-01f, 8.148465720e-01f, 8.227857540e-01f, 8.307698770e-01f, 8.387990120e-01f, 8.468732320e-01f, 8.549926080e-01f, 8.631572130e-01f,
     8.713671190e-01f, 8.796223970e-01f, 8.879231180e-01f, 8.962693530e-01f, 9.046611740e-01f, 9.130986520e-01f, 9.215818560e-01f, 9.301108580e-01f,
     9.386857280e-01f, 9.473065370e-01f, 9.559733530e-01f, 9.646862480e-01f, 9.734452900e-01f, 9.822505500e-01f, 9.911020970e-01f, 1.000000000e+00f
-#if defined(GC_GLSL)
-);
-#else
-};
-#endif
-#if defined(GC_HOST)
-}
-#endif
+GC_FLOAT_TABLE_END
 
 #endif /* GC_SRGB_TABLE_H */
