@@ -84,6 +84,8 @@ TEST_F(MaterialLayersRenderTest, OnesKeepTheBitsAndZerosChangeThePixels)
 
 // A white sheen on every PBR sphere of tests/data/scenes/material-layers under a white sky:
 // the sheened program builds and runs, the spheres' pixels change and nothing is non-finite.
+// A red sheen scales the layers beneath as the white one does (by max(colour) E), so the two
+// differ only through the sheen lobe itself: a pixel's green must differ somewhere.
 TEST_F(MaterialLayersRenderTest, SheenRendersOnTheDevice)
 {
     const Scene plain = load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) /
@@ -119,6 +121,12 @@ TEST_F(MaterialLayersRenderTest, SheenRendersOnTheDevice)
     };
     const std::vector<glm::vec4> without = image(plain);
     const std::vector<glm::vec4> with = image(sheened);
+    Scene red = sheened;
+    for (Material& m : red.materials)
+        if (m.layers.sheen_on) m.layers.sheen_color = glm::vec3(1.0f, 0.0f, 0.0f);
+    const std::vector<glm::vec4> with_red = image(red);
+    std::size_t greener = 0;
+    for (std::size_t i = 0; i < with.size(); ++i) greener += with[i].y > with_red[i].y ? 1 : 0;
     std::size_t changed = 0, non_finite = 0;
     for (std::size_t i = 0; i < with.size(); ++i) {
         changed += with[i] != without[i] ? 1 : 0;
@@ -128,6 +136,8 @@ TEST_F(MaterialLayersRenderTest, SheenRendersOnTheDevice)
                 with.size(), non_finite);
     EXPECT_GT(changed, with.size() / 20);
     EXPECT_EQ(non_finite, 0u);
+    std::printf("the white sheen's green exceeds the red sheen's in %zu pixels\n", greener);
+    EXPECT_GT(greener, with.size() / 20);
 }
 
 }  // namespace
