@@ -34,13 +34,36 @@
 #include "gc_camera.h"
 #include "gc_rng.h"
 
+/* An instanced scene (-D GC_SCENE_INSTANCED): the instance buffers come before the scene's,
+ * every ray goes through the two-level BVH one by one (no camera packets), and hits are shaded
+ * in world space (gc_path_instances.h). A flat scene's program is unchanged. */
+#if defined(GC_SCENE_INSTANCED)
+#include "gc_path_instances.h"
+#define GC_INSTANCES_FIRST_PARAMS GC_INSTANCE_PARAMS,
+#define GC_INSTANCES_FIRST_ARGS GC_INSTANCE_ARGS,
+#define GC_PATH_CLOSEST(ray) gc_trace_instances(GC_INSTANCE_ARGS, GC_BVH_ARGS, ray, false)
+#define GC_PATH_SHADE(path, ray, hit) gc_shade_instance_vertex(GC_SHADE_ARGS, gc_instances, params, path, ray, hit)
+#define GC_PATH_OCCLUDED(ray) (gc_trace_instances(GC_INSTANCE_ARGS, GC_BVH_ARGS, ray, true).instance != GC_INVALID)
+#define GC_PATH_HIT GcInstanceHit
+#else
+#define GC_INSTANCES_FIRST_PARAMS
+#define GC_INSTANCES_FIRST_ARGS
+#define GC_PATH_CLOSEST(ray) gc_trace_closest(GC_BVH_ARGS, ray)
+#define GC_PATH_SHADE(path, ray, hit) gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit)
+#define GC_PATH_OCCLUDED(ray) gc_trace_any(GC_BVH_ARGS, ray)
+#define GC_PATH_HIT GcHit
+#if defined(GC_HAVE_PACKET8)
+#define GC_PATH_CAMERA_PACKETS
+#endif
+#endif
+
 /* One work-item's pixels, out of line on CPUs (GC_ITEM_BODY, gc_platform.h). Inlined, PoCL
  * compiles three copies of this loop with its shading and packet code (the kernel and its two
  * work-group launchers); called, once, which halves the object and shortens a cold start. One
  * call per work-item is nothing against its paths (docs/decisions/cold-start.md). */
 GC_ITEM_BODY gc_megakernel_item(const uint item,
                                 const GcRenderParams params,
-                                GC_SCENE_PARAMS,
+                                GC_INSTANCES_FIRST_PARAMS GC_SCENE_PARAMS,
                                 __global float4* film,
                                 __global float4* film_squares,
                                 __global const uint* pixel_list)
@@ -72,9 +95,9 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
         }
         /* The group's camera rays, which leave through one pixel or a few neighbours, as one
          * packet (gc_packet8.h) when there are enough of them; else each path traces its own. */
-        GcHit cam_hit[8];
+        GC_PATH_HIT cam_hit[8];
         bool cam_traced = false;
-#if defined(GC_HAVE_PACKET8)
+#if defined(GC_PATH_CAMERA_PACKETS)
         if (lanes >= GC_PACKET_MIN_LANES) {
             int active[8];
             for (uint k = 0u; k < 8u; ++k) {
@@ -100,10 +123,10 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
             GcPathState path = gc_path_start(pixel, params.sample_index + (p0 + k) % samples);
             /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
             for (bool first_segment = true;; first_segment = false) {
-                const GcHit hit = first_segment && cam_traced ? cam_hit[k] : gc_trace_closest(GC_BVH_ARGS, ray);
-                const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit);
+                const GC_PATH_HIT hit = first_segment && cam_traced ? cam_hit[k] : GC_PATH_CLOSEST(ray);
+                const GcVertexResult res = GC_PATH_SHADE(path, ray, hit);
                 path = res.path;
-                if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
+                if ((res.flags & GC_VERTEX_SHADOW) != 0u && !GC_PATH_OCCLUDED(res.shadow.ray))
                     path.radiance += res.shadow.contribution;
                 if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
                 ray = res.next;
@@ -120,10 +143,10 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
 }
 
 __kernel void path_megakernel(const GcRenderParams params,
-                              GC_SCENE_PARAMS,
+                              GC_INSTANCES_FIRST_PARAMS GC_SCENE_PARAMS,
                               __global float4* film,
                               __global float4* film_squares,
                               __global const uint* pixel_list)
 {
-    gc_megakernel_item(get_global_id(0), params, GC_SCENE_ARGS, film, film_squares, pixel_list);
+    gc_megakernel_item(get_global_id(0), params, GC_INSTANCES_FIRST_ARGS GC_SCENE_ARGS, film, film_squares, pixel_list);
 }

@@ -215,6 +215,7 @@ Options parse_options(const std::vector<std::string>& args)
         else if (arg == "--json") o.json_path = value();
         else if (arg == "--heatmap") o.heatmap_dir = value();
         else if (arg == "--gltf-scene") o.gltf_scene = static_cast<int>(parse_count(arg, value(), 0, 1u << 20));
+        else if (arg == "--flatten-instances") o.flatten_instances = true;
         else if (!arg.empty() && arg[0] == '-' && arg != "-") throw UsageError("unknown option '" + arg + "'");
         else if (o.scene_path.empty()) o.scene_path = arg;
         else throw UsageError("more than one scene given ('" + o.scene_path + "' and '" + arg + "')");
@@ -363,6 +364,9 @@ Consistency (same image on every device):
                            without OpenImageIO)
 Scene:
       --gltf-scene N       which scene of a glTF file (default: the file's default scene)
+      --flatten-instances  copy a glTF's reused meshes into one flat scene (by default the
+                           path integrator keeps each mesh once on the device, drawn by
+                           instances through a two-level BVH)
 Other:
   -q, --quiet              no progress bar (it is also off when stderr is not a terminal)
   -v, --verbose            more detail (kernel build and cache, timings)

@@ -24,6 +24,7 @@ struct Options {
     bool quiet = false;
     bool verbose = false;
     int gltf_scene = -1;         // -1 = the file's default scene
+    bool flatten_instances = false;  // --flatten-instances: no two-level BVH for reused glTF meshes
     bool spp_given = false;
     bool env_scale_given = false;
     bool preview = false;         // --preview: the Vulkan raster pass instead of a render

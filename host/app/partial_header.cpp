@@ -10,7 +10,8 @@ PartialImage partial_image_header(const PreparedScene& prepared, const RenderSet
     PartialImage part;
     part.width = std::uint32_t(settings.width);
     part.height = std::uint32_t(settings.height);
-    part.scene_hash = hash_text(scene_content_hash(prepared.scene));
+    part.scene_hash = hash_text(prepared.instances ? scene_content_hash(prepared.instances->scene)
+                                                   : scene_content_hash(prepared.scene));
     part.options_hash = hash_text(render_options_hash(settings, prepared.camera, plan.chunk_samples));
     part.seed = settings.seed;
     part.chunk_samples = plan.chunk_samples;

@@ -138,7 +138,10 @@ ExitCode run_render(const Options& options)
         if (!denoiser_available(denoise_options, &why)) throw DeviceError("--denoise: " + why);
     }
 
-    PreparedScene prepared = prepare_scene(scene_request(options));
+    SceneRequest request = scene_request(options);
+    // Only the path integrator traces instances; a Session flattens them for the AOV layers.
+    request.keep_instances = settings.integrator == IntegratorKind::Path && !options.flatten_instances;
+    PreparedScene prepared = prepare_scene(request);
     if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
 
     if (!options.partial) check_output_format(output);

@@ -58,6 +58,34 @@ DeviceBvh DeviceBvh::upload(const cl::Context& context, const FlatBvh& bvh, BvhL
     return d;
 }
 
+DeviceBvh DeviceBvh::upload_instanced(const cl::Context& context, const InstanceBvhParts& parts, BvhLayout layout,
+                                      DeviceInstanceLevel& top)
+{
+    DeviceBvh d;
+    d.m_layout = layout;
+    auto upload_top = [&](const auto& bvh) {
+        top.tlas = cl::read_only_buffer(context, bvh.tlas, "instance tlas");
+        top.instances = cl::read_only_buffer(context, bvh.instances, "instances");
+    };
+    if (layout == BvhLayout::Wide) {
+        const InstancedBvh4 bvh = assemble_wide(parts);
+        d.m_wide_nodes = cl::read_only_buffer(context, bvh.nodes, "mesh bvh4 nodes");
+        d.m_wide_blocks = cl::read_only_buffer(context, bvh.tris, "mesh bvh4 triangle blocks");
+        upload_top(bvh);
+    } else if (layout == BvhLayout::Wide8) {
+        const InstancedBvh8 bvh = assemble_wide8(parts);
+        d.m_wide8_nodes = cl::read_only_buffer(context, bvh.nodes, "mesh bvh8 nodes");
+        d.m_wide_blocks = cl::read_only_buffer(context, bvh.tris, "mesh bvh8 triangle blocks");
+        upload_top(bvh);
+    } else {
+        const InstancedBvh bvh = assemble_binary(parts);
+        d.m_nodes = cl::read_only_buffer(context, bvh.nodes, "mesh bvh nodes");
+        d.m_triangles = cl::read_only_buffer(context, bvh.tris, "mesh bvh triangles");
+        upload_top(bvh);
+    }
+    return d;
+}
+
 cl_mem DeviceBvh::nodes() const
 {
     switch (m_layout) {

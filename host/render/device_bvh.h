@@ -12,6 +12,7 @@
 #include <string>
 
 #include "host/bvh/flatten.h"
+#include "host/bvh/instance_bvh.h"
 #include "host/cl/buffer.h"
 #include "host/cl/context.h"
 
@@ -27,11 +28,22 @@ std::string program_options(BvhLayout layout);
 
 const char* layout_name(BvhLayout layout);  // "BVH2", "BVH4" or "BVH8"
 
+// The top level of an instanced scene's two-level BVH on a device (gc_traverse_instances.h's
+// GC_INSTANCE_PARAMS): a BVH2 over the instances, and the instances in its leaf order.
+struct DeviceInstanceLevel {
+    cl::Buffer<dev::GcBvhNode> tlas;
+    cl::Buffer<dev::GcInstance> instances;
+};
+
 class DeviceBvh {
 public:
     DeviceBvh() = default;
     // Uploads `bvh` in `layout` (collapsing it to a BVH4 first where asked).
     static DeviceBvh upload(const cl::Context& context, const FlatBvh& bvh, BvhLayout layout);
+    // Uploads an instanced scene's meshes' trees in `layout` as the DeviceBvh the bottom
+    // traversal reads, and its top level into `top`.
+    static DeviceBvh upload_instanced(const cl::Context& context, const InstanceBvhParts& parts, BvhLayout layout,
+                                      DeviceInstanceLevel& top);
 
     BvhLayout layout() const { return m_layout; }
     // The two buffers the traversal kernels take, in either layout.

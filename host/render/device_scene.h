@@ -17,6 +17,7 @@
 #include "host/render/kernel_features.h"
 #include "host/render/scene_buffers.h"
 #include "host/render/scene_convert.h"
+#include "host/scene/instances.h"
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -25,7 +26,9 @@ struct DeviceScene {
     // The triangle attributes' host array, which CPU devices read in place (like the wide
     // BVH's arrays in DeviceBvh). Declared before the buffers so that it outlives them.
     std::shared_ptr<const BigArray<dev::GcTriangleAttribs>> host_attribs;
-    DeviceBvh bvh;  // BVH2 or BVH4, as bvh_layout_for chose
+    DeviceBvh bvh;  // BVH2 or BVH4, as bvh_layout_for chose; an instanced scene's meshes' trees
+    // An instanced scene's top level (upload_instanced); empty for a flat scene.
+    DeviceInstanceLevel instance_level;
     cl::Buffer<dev::GcTriangleAttribs> attribs;
     cl::Buffer<dev::GcMaterial> materials;
     cl::Buffer<dev::GcTexture> textures;
@@ -53,6 +56,15 @@ struct DeviceScene {
     // Bytes of device memory the scene occupies (reported by --verbose and the benchmark).
     std::uint64_t bytes() const;
 
+    // Whether the scene is traced through the two-level BVH: its programs are built with
+    // -D GC_SCENE_INSTANCED (scene_program_options) and take instance_args() before the
+    // scene's buffers.
+    bool instanced() const { return instance_level.instances.count() > 0; }
+    auto instance_args() const  // GC_INSTANCE_PARAMS
+    {
+        return std::tuple_cat(scene_buffers::arg(instance_level.tlas), scene_buffers::arg(instance_level.instances));
+    }
+
     // Kernel argument groups for cl::Kernel::set_args, each the twin of one parameter macro of
     // kernels/shared, generated from the same list (gc_scene_buffers.h), so they agree in order
     // and number. The tuples refer to this scene's buffers: pass them to set_args, do not keep
@@ -79,8 +91,18 @@ struct DeviceScene {
 
     static DeviceScene upload(const cl::Context& context, const Scene& scene, const FlatBvh& bvh,
                               const EnvironmentMap& environment = {}, const DeviceTuning& tuning = {});
+    // An instanced scene: each mesh once (its tree from `bvh`, built by build_instance_bvh),
+    // the instances' top level, and shading data for the meshes' triangles followed by every
+    // instance's emissive triangles in world space (with_world_emitters), which the emitters
+    // index. Material and texture updates are refused (UsageError).
+    static DeviceScene upload_instanced(const cl::Context& context, const InstancedScene& scene,
+                                        const InstanceBvhParts& bvh, const EnvironmentMap& environment = {},
+                                        const DeviceTuning& tuning = {});
 
 private:
+    // Everything but the BVH, from `scene`; emitters among its triangles from `first_emitter` on.
+    void upload_shading(const cl::Context& context, const Scene& scene, std::uint32_t first_emitter,
+                        const EnvironmentMap& environment, const DeviceTuning& tuning);
     // UsageError unless `scene` has the uploaded scene's triangles and materials.
     void check_update(const Scene& scene, const char* what) const;
     // The materials, texture views, emitters and summary from `scene`, and a new revision.

@@ -110,6 +110,24 @@ std::uint64_t scene_content_hash(const Scene& scene)
     return h.value();
 }
 
+std::uint64_t scene_content_hash(const InstancedScene& scene)
+{
+    cl::Fnv1a h;
+    h.add_field("geocold instanced scene v1");
+    add_value(h, scene_content_hash(scene.meshes));
+    add_value(h, std::uint64_t(scene.mesh_ranges.size()));
+    for (const MeshRange& r : scene.mesh_ranges) {
+        add_value(h, r.first_triangle);
+        add_value(h, r.triangle_count);
+    }
+    add_value(h, std::uint64_t(scene.instances.size()));
+    for (const Instance& inst : scene.instances) {
+        add_value(h, inst.mesh);
+        for (int c = 0; c < 4; ++c) add_vec3(h, glm::vec3(inst.object_to_world[c]));
+    }
+    return h.value();
+}
+
 std::uint64_t render_options_hash(const RenderSettings& settings, const Camera& camera, std::uint32_t chunk_samples)
 {
     cl::Fnv1a h;

@@ -9,12 +9,15 @@
 #include <string>
 
 #include "host/render/render_settings.h"
+#include "host/scene/instances.h"
 #include "host/scene/scene.h"
 
 namespace gc {
 
 // 64-bit FNV-1a over the loaded scene. Two loads of the same files give the same hash.
 std::uint64_t scene_content_hash(const Scene& scene);
+// The same for an instanced scene: its meshes, their ranges and the instances' transforms.
+std::uint64_t scene_content_hash(const InstancedScene& scene);
 
 // 64-bit FNV-1a over the image-changing settings, the camera and the chunk size; reads the
 // environment map's file (InputError naming it when it cannot be read).

@@ -3,6 +3,7 @@
 #include "host/render/megakernel_path.h"
 #include "host/render/pixel_integrators.h"
 #include "host/render/wavefront_path.h"
+#include "host/util/error.h"
 
 namespace gc {
 
@@ -18,13 +19,20 @@ bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form)
 
 std::string scene_program_options(const DeviceScene& scene)
 {
-    return program_options(scene.bvh.layout()) + " " + program_options(scene.features);
+    return program_options(scene.bvh.layout()) + " " + program_options(scene.features) +
+           (scene.instanced() ? " -D GC_SCENE_INSTANCED" : "");
 }
 
 std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const DeviceScene& scene,
                                             const RenderSettings& settings, const RenderSetup& setup,
                                             std::uint32_t batch_pixels)
 {
+    // Only the path integrator's megakernel traces the two-level BVH; a Session uploads an
+    // instanced scene flattened for the others (Session, prepare_scene).
+    if (scene.instanced() && settings.integrator != IntegratorKind::Path)
+        throw UsageError(std::string("the ") + integrator_name(settings.integrator) +
+                         " integrator does not trace instanced scenes; upload the scene flattened");
+    if (scene.instanced()) return std::make_unique<MegakernelPathIntegrator>(context, scene, setup);
     switch (settings.integrator) {
     case IntegratorKind::Aov: return std::make_unique<AovIntegrator>(context, scene, setup);
     case IntegratorKind::Whitted: return std::make_unique<WhittedIntegrator>(context, scene, setup);

@@ -16,7 +16,7 @@ std::size_t local_size(const cl::Context& context) { return context.device().is_
 MegakernelPathIntegrator::MegakernelPathIntegrator(const cl::Context& context, const DeviceScene& scene,
                                                    const RenderSetup& setup)
     : m_context(context),
-      m_camera_packets(scene.bvh.layout() == BvhLayout::Wide8),
+      m_camera_packets(scene.bvh.layout() == BvhLayout::Wide8 && !scene.instanced()),
       m_program(context, "megakernel.cl", scene_program_options(scene), setup.build),
       m_kernel(m_program.kernel("path_megakernel"))
 {
@@ -32,7 +32,10 @@ void MegakernelPathIntegrator::begin_pass(dev::GcRenderParams& params)
 void MegakernelPathIntegrator::render_batch(const dev::GcRenderParams& params, const DeviceScene& scene,
                                             const FilmBuffers& film)
 {
-    m_kernel.set_args(params, scene.scene_args(), film.sums, film.squares, film.pixel_list);
+    if (scene.instanced())
+        m_kernel.set_args(params, scene.instance_args(), scene.scene_args(), film.sums, film.squares, film.pixel_list);
+    else
+        m_kernel.set_args(params, scene.scene_args(), film.sums, film.squares, film.pixel_list);
     const std::uint32_t items = (params.pixel_count + params.pixels_per_item - 1) / params.pixels_per_item;
     m_kernel.launch(m_context, items, local_size(m_context), "paths (megakernel)");
 }

@@ -311,11 +311,12 @@ std::vector<dev::GcPointLight> make_point_lights(const Scene& scene)
     return out;
 }
 
-std::vector<dev::GcEmitter> make_emitters(const Scene& scene)
+std::vector<dev::GcEmitter> make_emitters(const Scene& scene, std::uint32_t first_triangle)
 {
     std::vector<dev::GcEmitter> out;
     double total_power = 0.0;
     for (std::uint32_t tri : scene.emissive_triangles()) {
+        if (tri < first_triangle) continue;
         const Point3 a = scene.vertex(tri, 0), b = scene.vertex(tri, 1), c = scene.vertex(tri, 2);
         const float area = static_cast<float>(triangle_area(a, b, c));
         const Material& m = scene.materials[scene.material_ids[tri]];

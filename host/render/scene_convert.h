@@ -54,8 +54,9 @@ std::vector<dev::GcPointLight> make_point_lights(const Scene& scene);
 
 // Emissive triangles with power-proportional selection probabilities (power = area times
 // the luminance of the emitted radiance). Zero-area emitters are left out: they can never
-// be hit nor sampled. The last cdf is exactly 1.
-std::vector<dev::GcEmitter> make_emitters(const Scene& scene);
+// be hit nor sampled. The last cdf is exactly 1. Only triangles from `first_triangle` on
+// are considered (an instanced scene's world-space emitters, DeviceScene::upload_instanced).
+std::vector<dev::GcEmitter> make_emitters(const Scene& scene, std::uint32_t first_triangle = 0);
 
 // Sum over emitters of area * luminance(emission): the normalisation of the light pdf the
 // kernels compute (gc_light_pdf_w), consistent with make_emitters' selection probabilities.

@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "host/bvh/bvh.h"
+#include "host/bvh/instance_bvh.h"
 #include "host/cl/context.h"
 #include "host/cl/device.h"
 #include "host/render/device_scene.h"
@@ -31,13 +32,26 @@ struct SceneRequest {
     std::filesystem::path path;
     LoadOptions load;
     CameraOverrides camera;  // unset fields: the file's camera, or the framing of resolve_camera
+    // A glTF whose nodes draw some mesh more than once stays instanced
+    // (PreparedScene::instances), each mesh once on the device, where the integrator is the
+    // path integrator; a Session flattens it for the others.
+    bool keep_instances = false;
 };
 
-// A scene on the host, ready for devices.
+// An instanced scene on the host and its two-level BVH's parts.
+struct PreparedInstances {
+    InstancedScene scene;
+    InstanceBvhParts bvh;
+};
+
+// A scene on the host, ready for devices. An instanced scene (SceneRequest::keep_instances)
+// has `instances`; then `scene` is its meshes in object space (materials, textures, lights
+// and file as loaded) and `bvh` is empty.
 struct PreparedScene {
     Scene scene;
     Camera camera;
     FlatBvh bvh;
+    std::shared_ptr<const PreparedInstances> instances;
 };
 
 // Loads the scene (InputError naming the file on bad input) and resolves the camera.
@@ -48,7 +62,8 @@ PreparedScene prepare_scene(const SceneRequest& request);
 class Session {
 public:
     // Uploads `prepared` and the environment map settings.env_map_path names to `device`,
-    // and builds the integrator's program. The session keeps nothing of `prepared`.
+    // and builds the integrator's program. The session keeps nothing of `prepared`. An
+    // instanced scene goes up instanced for the path integrator, flattened for the others.
     Session(const cl::DeviceInfo& device, const PreparedScene& prepared, const RenderSettings& settings,
             const RenderSetup& setup = {});
     // The renderer holds the context by reference.

@@ -65,11 +65,12 @@ double framing_distance(const glm::dvec3& half_extent)
 // fills the image instead of floating in a black border. Computed in double and rounded once,
 // so that a scene near float's limits (a float extent overflows past 1.7e38) still frames
 // wherever the camera's own position fits in a float.
-Camera frame_camera(const Scene& scene)
+Camera frame_camera(const Scene& scene) { return frame_camera(scene, scene.bounds()); }
+
+Camera frame_camera(const Scene& scene, const Bounds3& b)
 {
     Camera camera;
     camera.vfov_degrees = k_default_fov_degrees;
-    const Bounds3 b = scene.bounds();
     if (b.empty()) return camera;
     const glm::dvec3 lo(b.lo.glm()), hi(b.hi.glm());
     const glm::dvec3 center = 0.5 * (lo + hi);
@@ -82,13 +83,13 @@ Camera frame_camera(const Scene& scene)
     return camera;
 }
 
-Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides)
+Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides, const std::optional<Bounds3>& world_bounds)
 {
     // A framed camera is only needed when the file has none and the user does not place one.
     const bool user_places_camera = overrides.look_from && overrides.look_at;
     Camera camera;  // the defaults (a 40-degree view) under a camera the user places
     if (scene.camera) camera = *scene.camera;
-    else if (!user_places_camera) camera = frame_camera(scene);
+    else if (!user_places_camera) camera = world_bounds ? frame_camera(scene, *world_bounds) : frame_camera(scene);
     if (overrides.look_from) camera.look_from = *overrides.look_from;
     if (overrides.look_at) camera.look_at = *overrides.look_at;
     if (overrides.up) camera.up = *overrides.up;

@@ -25,11 +25,16 @@ struct CameraOverrides {
 // frame it (the camera would stand past float's range, or so close to the centre that its
 // position rounds onto the centre's).
 Camera frame_camera(const Scene& scene);
+// The same for the world bounds `bounds` (an instanced scene's, whose triangles are its
+// meshes in object space); `scene` names the file in errors.
+Camera frame_camera(const Scene& scene, const Bounds3& bounds);
 
 // The file's camera (or frame_camera's, unless the overrides give both look_from and
-// look_at) with the overrides applied. Throws UsageError when the result is unusable:
-// look_from == look_at, up parallel to the view direction, a zero up, or a field of view
-// outside (0, 180) degrees.
-Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides);
+// look_at) with the overrides applied; the framing uses `world_bounds` where given (an
+// instanced scene's), else the scene's triangles. Throws UsageError when the result is
+// unusable: look_from == look_at, up parallel to the view direction, a zero up, or a field of
+// view outside (0, 180) degrees.
+Camera resolve_camera(const Scene& scene, const CameraOverrides& overrides,
+                      const std::optional<Bounds3>& world_bounds = std::nullopt);
 
 }  // namespace gc

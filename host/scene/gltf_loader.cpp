@@ -74,20 +74,43 @@ public:
         for (std::size_t i = 0; i < m_model.materials.size(); ++i) m_uv_sets[i] = uv_set(m_model.materials[i], static_cast<int>(i));
     }
 
+    // The scene's root nodes; without scenes in the file, every node that is nobody's child.
+    std::vector<int> root_nodes(int scene_index) const
+    {
+        if (scene_index >= 0) return m_model.scenes[static_cast<std::size_t>(scene_index)].nodes;
+        std::vector<int> roots;
+        std::vector<char> is_child(m_model.nodes.size(), 0);
+        for (const tinygltf::Node& n : m_model.nodes)
+            for (int c : n.children)
+                if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = 1;
+        for (std::size_t i = 0; i < m_model.nodes.size(); ++i)
+            if (!is_child[i]) roots.push_back(static_cast<int>(i));
+        return roots;
+    }
+
+    // Whether the scene's nodes draw some mesh more than once. Bad indices and nodes met twice
+    // are skipped here: convert_scene reports them.
+    bool reuses_a_mesh(int scene_index) const
+    {
+        std::vector<int> uses(m_model.meshes.size(), 0);
+        std::vector<char> seen(m_model.nodes.size(), 0);
+        std::vector<int> stack = root_nodes(scene_index);
+        while (!stack.empty()) {
+            const int n = stack.back();
+            stack.pop_back();
+            if (n < 0 || static_cast<std::size_t>(n) >= m_model.nodes.size() || seen[static_cast<std::size_t>(n)]++) continue;
+            const tinygltf::Node& node = m_model.nodes[static_cast<std::size_t>(n)];
+            if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < uses.size() &&
+                ++uses[static_cast<std::size_t>(node.mesh)] > 1)
+                return true;
+            stack.insert(stack.end(), node.children.begin(), node.children.end());
+        }
+        return false;
+    }
+
     void convert_scene(int scene_index)
     {
-        std::vector<int> roots;
-        if (scene_index >= 0) {
-            roots = m_model.scenes[static_cast<std::size_t>(scene_index)].nodes;
-        } else {
-            // No scenes in the file: every node that is nobody's child is a root.
-            std::vector<char> is_child(m_model.nodes.size(), 0);
-            for (const tinygltf::Node& n : m_model.nodes)
-                for (int c : n.children)
-                    if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = 1;
-            for (std::size_t i = 0; i < m_model.nodes.size(); ++i)
-                if (!is_child[i]) roots.push_back(static_cast<int>(i));
-        }
+        const std::vector<int> roots = root_nodes(scene_index);
 
         // Depth-first in file order, with an explicit stack: a hostile file cannot overflow
         // ours, and a node met twice (a cycle or a shared child) is an error, as the spec says
@@ -690,7 +713,10 @@ namespace {
 
 // load_gltf and load_gltf_instanced: the file read, checked and converted; `instanced` as
 // GltfConverter takes it.
-Scene convert_gltf(const std::filesystem::path& path, const LoadOptions& options, InstancedScene* instanced)
+// With `only_where_reused` set, `instanced` is used only when the scene's nodes draw a mesh
+// more than once, and *only_where_reused says whether it was.
+Scene convert_gltf(const std::filesystem::path& path, const LoadOptions& options, InstancedScene* instanced,
+                   bool* only_where_reused = nullptr)
 {
     const std::string name = path.string();
     const std::vector<unsigned char> bytes = read_regular_file(path);
@@ -735,6 +761,10 @@ Scene convert_gltf(const std::filesystem::path& path, const LoadOptions& options
 
     Scene scene;
     scene.source_path = name;
+    if (only_where_reused) {
+        *only_where_reused = GltfConverter(model, name, files, scene, nullptr).reuses_a_mesh(scene_index);
+        if (!*only_where_reused) instanced = nullptr;
+    }
     GltfConverter converter(model, name, files, scene, instanced);
     converter.convert_materials();
     converter.convert_scene(scene_index);
@@ -758,6 +788,18 @@ InstancedScene load_gltf_instanced(const std::filesystem::path& path, const Load
 {
     InstancedScene out;
     out.meshes = convert_gltf(path, options, &out);
+    validate_instances(out);
+    return out;
+}
+
+std::variant<Scene, InstancedScene> load_gltf_instanced_where_reused(const std::filesystem::path& path,
+                                                                     const LoadOptions& options)
+{
+    InstancedScene out;
+    bool reused = false;
+    Scene scene = convert_gltf(path, options, &out, &reused);
+    if (!reused) return scene;
+    out.meshes = std::move(scene);
     validate_instances(out);
     return out;
 }

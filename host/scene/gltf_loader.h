@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <variant>
 
 #include "host/scene/instances.h"
 #include "host/scene/load_options.h"
@@ -22,8 +23,13 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = 
 // The same file with its node tree kept as instances: every mesh a node draws is stored once,
 // in object space (InstancedScene::meshes, in the order nodes first draw them), and each such
 // node becomes an instance with its world transform; materials, camera and lights as above.
-// flatten_instances() of the result is load_gltf's scene up to the transforms' rounding and
-// the winding of mirrored instances (kept as in the file: the instance's determinant says so).
+// flatten_instances(result, MirroredWinding::FrontStaysFront) is load_gltf's scene up to the
+// transforms' rounding.
 InstancedScene load_gltf_instanced(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// load_gltf_instanced where the scene's nodes draw some mesh more than once, else load_gltf's
+// scene, from one read of the file.
+std::variant<Scene, InstancedScene> load_gltf_instanced_where_reused(const std::filesystem::path& path,
+                                                                     const LoadOptions& options = {});
 
 }  // namespace gc

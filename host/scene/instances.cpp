@@ -63,7 +63,41 @@ void validate_instances(const InstancedScene& scene)
     }
 }
 
-Scene flatten_instances(const InstancedScene& scene)
+namespace {
+
+// Appends the triangles of one instance (mesh range `r`, transform `m`) that `keep` accepts
+// to `out`, in world space, in mesh order (see flatten_instances for the arithmetic and
+// `winding`).
+template <class Keep>
+void append_instance(Scene& out, const Scene& src, const MeshRange& r, const glm::mat4& m, MirroredWinding winding,
+                     Keep keep)
+{
+    const glm::mat3 normal_map = glm::transpose(glm::mat3(world_to_object(m)));
+    const bool swap = winding == MirroredWinding::FrontStaysFront && glm::determinant(glm::mat3(m)) < 0.0f;
+    static constexpr int kKept[3] = {0, 1, 2};
+    static constexpr int kSwapped[3] = {0, 2, 1};
+    const int* corners = swap ? kSwapped : kKept;
+    for (std::uint32_t t = r.first_triangle; t < r.first_triangle + r.triangle_count; ++t) {
+        if (!keep(t)) continue;
+        for (int c : {corners[0], corners[1], corners[2]}) {
+            const std::size_t k = 3 * std::size_t{t} + c;
+            out.positions.push_back(Point3(apply(m, src.positions[k].glm(), 1.0f)));
+            out.normals.push_back(unit_or_zero(normal_map * src.normals[k].glm()));
+            if (!src.uvs.empty()) out.uvs.push_back(src.uvs[k]);
+            if (!src.tangents.empty()) {
+                const glm::vec4 tg = src.tangents[k];
+                const Normal3 dir = unit_or_zero(apply(m, glm::vec3(tg), 0.0f));
+                out.tangents.push_back(glm::vec4(dir.x, dir.y, dir.z, swap ? -tg.w : tg.w));
+            }
+        }
+        out.material_ids.push_back(src.material_ids[t]);
+        out.has_vertex_normals.push_back(src.has_vertex_normals[t]);
+    }
+}
+
+}  // namespace
+
+Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding)
 {
     validate_instances(scene);
     const Scene& src = scene.meshes;
@@ -80,27 +114,42 @@ Scene flatten_instances(const InstancedScene& scene)
     out.has_vertex_normals.reserve(total);
     if (!src.uvs.empty()) out.uvs.reserve(3 * total);
     if (!src.tangents.empty()) out.tangents.reserve(3 * total);
+    for (const Instance& inst : scene.instances)
+        append_instance(out, src, scene.mesh_ranges[inst.mesh], inst.object_to_world, winding,
+                        [](std::uint32_t) { return true; });
+    return out;
+}
+
+Scene with_world_emitters(const InstancedScene& scene)
+{
+    validate_instances(scene);
+    Scene out = scene.meshes;
+    const Scene& src = scene.meshes;
+    auto emits = [&](std::uint32_t t) { return src.materials[src.material_ids[t]].is_emissive(); };
+    for (const Instance& inst : scene.instances)
+        append_instance(out, src, scene.mesh_ranges[inst.mesh], inst.object_to_world, MirroredWinding::FrontStaysFront,
+                        emits);
+    return out;
+}
+
+Bounds3 world_bounds(const InstancedScene& scene)
+{
+    std::vector<Bounds3> mesh_bounds(scene.mesh_ranges.size());
+    for (std::size_t m = 0; m < scene.mesh_ranges.size(); ++m) {
+        const MeshRange& r = scene.mesh_ranges[m];
+        for (std::size_t k = 3 * std::size_t{r.first_triangle}; k < 3 * std::size_t{r.first_triangle + r.triangle_count}; ++k)
+            mesh_bounds[m] = unite(mesh_bounds[m], scene.meshes.positions[k]);
+    }
+    Bounds3 b;
     for (const Instance& inst : scene.instances) {
-        const MeshRange& r = scene.mesh_ranges[inst.mesh];
-        const glm::mat4& m = inst.object_to_world;
-        const glm::mat3 normal_map = glm::transpose(glm::mat3(world_to_object(m)));
-        for (std::uint32_t t = r.first_triangle; t < r.first_triangle + r.triangle_count; ++t) {
-            for (int c = 0; c < 3; ++c) {
-                const std::size_t k = 3 * std::size_t{t} + c;
-                out.positions.push_back(Point3(apply(m, src.positions[k].glm(), 1.0f)));
-                out.normals.push_back(unit_or_zero(normal_map * src.normals[k].glm()));
-                if (!src.uvs.empty()) out.uvs.push_back(src.uvs[k]);
-                if (!src.tangents.empty()) {
-                    const glm::vec4 tg = src.tangents[k];
-                    const Normal3 dir = unit_or_zero(apply(m, glm::vec3(tg), 0.0f));
-                    out.tangents.push_back(glm::vec4(dir.x, dir.y, dir.z, tg.w));
-                }
-            }
-            out.material_ids.push_back(src.material_ids[t]);
-            out.has_vertex_normals.push_back(src.has_vertex_normals[t]);
+        const Bounds3& mb = mesh_bounds[inst.mesh];
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 p((corner & 1) ? mb.hi.x : mb.lo.x, (corner & 2) ? mb.hi.y : mb.lo.y,
+                              (corner & 4) ? mb.hi.z : mb.lo.z);
+            b = unite(b, Point3(apply(inst.object_to_world, p, 1.0f)));
         }
     }
-    return out;
+    return b;
 }
 
 }  // namespace gc

@@ -48,11 +48,35 @@ struct InstancedScene {
 // finite, invertible affine map.
 void validate_instances(const InstancedScene& scene);
 
+// What a mirroring instance (negative determinant) does to its triangles' winding.
+enum class MirroredWinding {
+    // The object-space order, mirrored: the geometric normal from the winding turns to the
+    // other side of the shading normals. Both spaces' hits then agree bit for bit under
+    // exact transforms (the traversal tests' reference).
+    AsTransformed,
+    // Corners 1 and 2 swapped, bitangent signs flipped: the face the file calls front stays
+    // front, as load_gltf does for mirrored nodes and the path integrator for instances
+    // (gc_instance_attribs.h).
+    FrontStaysFront,
+};
+
 // The world-space scene: instance after instance, each instance's triangles in mesh order, so
 // triangle k of instance i is triangle first_flat(i) + k. Positions through object_to_world
 // (float arithmetic, in the order (m0 x + m1 y) + m2 z + m3), normals through its inverse
 // transpose, tangents through its linear part. Validates first.
-Scene flatten_instances(const InstancedScene& scene);
+Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding = MirroredWinding::AsTransformed);
+
+// The meshes' triangles, then every instance's emissive triangles in world space (instance
+// by instance, in mesh order, as flatten_instances writes them with FrontStaysFront): the
+// triangles an instanced scene's device shading data covers, so that light sampling reads
+// world-space emitters the way it reads a flat scene's. Validates first.
+Scene with_world_emitters(const InstancedScene& scene);
+
+// The world bounds of the instances' mesh boxes (eight corners each through the transform):
+// flatten_instances(scene).bounds() where every transform keeps boxes axis-aligned (scales,
+// translations, axis permutations), a little larger under rotations; one pass over the mesh
+// triangles and eight points per instance. `scene` must be valid.
+Bounds3 world_bounds(const InstancedScene& scene);
 
 // The world-to-object map of an instance in float, as the device gets it (the inverse
 // computed in double and rounded once). Inline: the BVH module uses it without the loaders.

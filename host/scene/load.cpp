@@ -33,4 +33,17 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
     return scene;
 }
 
+std::variant<Scene, InstancedScene> load_scene_keeping_instances(const std::filesystem::path& path,
+                                                                 const LoadOptions& options)
+{
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".gltf" && ext != ".glb") return load_scene(path, options);
+    std::variant<Scene, InstancedScene> loaded = load_gltf_instanced_where_reused(path, options);
+    Scene& checked = loaded.index() == 0 ? std::get<Scene>(loaded) : std::get<InstancedScene>(loaded).meshes;
+    check_some_triangle_has_area(checked);
+    check_renderable_scale(checked);
+    return loaded;
+}
+
 }  // namespace gc

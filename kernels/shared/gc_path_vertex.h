@@ -71,8 +71,8 @@ GC_FUNC float gc_nee_mis_weight(GcLightSample ls, GcMaterial m, float3 albedo, f
     return ls.kind == GC_LIGHT_POINT ? 1.0f : gc_power_heuristic(ls.pdf_w, gc_bsdf_pdf(m, albedo, wo, wi));
 }
 
-/* Shades the vertex where `ray` (the path's last segment) ended with `hit`. */
-GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray, GcHit hit)
+/* A result that ends the path with nothing added: no next ray, no shadow ray. */
+GC_FUNC GcVertexResult gc_vertex_result_none(GcRay ray)
 {
     GcVertexResult res;
     res.flags = 0u;
@@ -83,18 +83,33 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     res.shadow.pad0 = 0u;
     res.shadow.pad1 = 0u;
     res.shadow.pad2 = 0u;
+    return res;
+}
 
+/* The vertex of a path whose last segment, `ray`, left the scene: the environment's radiance. */
+GC_FUNC GcVertexResult gc_shade_escape(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray)
+{
+    GcVertexResult res = gc_vertex_result_none(ray);
+    path.depth += 1u;
+    const float3 L = GC_XYZ(path.radiance) +
+                     GC_XYZ(path.throughput) * gc_escaped_radiance(GC_SHADE_ARGS, params, path, GC_XYZ(ray.dir_tmax));
+    path.radiance = gc_with_w(L, path.radiance.w);
+    res.path = path;
+    return res;
+}
+
+/* The vertex where `ray` hit a surface (hit.prim valid) whose attributes are `tri`, in the
+ * ray's space: the scene's own for a flat scene (gc_shade_vertex), an instance's taken to
+ * world space for an instanced one (gc_instance_attribs.h). */
+GC_FUNC GcVertexResult gc_shade_surface(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray, GcHit hit,
+                                        GcTriangleAttribs tri)
+{
+    GcVertexResult res = gc_vertex_result_none(ray);
     path.depth += 1u;
     const uint bounce = path.depth - 1u;
     float3 beta = GC_XYZ(path.throughput);
     float3 L = GC_XYZ(path.radiance);
     const float3 wo_world = -GC_XYZ(ray.dir_tmax);
-
-    if (hit.prim == GC_INVALID) {
-        path.radiance = gc_with_w(L + beta * gc_escaped_radiance(GC_SHADE_ARGS, params, path, -wo_world), path.radiance.w);
-        res.path = path;
-        return res;
-    }
 
     /* The vertex's light and BSDF numbers, drawn first although they are used last. pcg4d is
      * a chain of dependent multiplies; issued here, the two chains run alongside each other
@@ -104,7 +119,6 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
      * docs/decisions/random-numbers.md. */
     const float4 r_light = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
     const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
-    const GcTriangleAttribs tri = GC_ATTRIB(hit.prim);
     const GcSurface s = gc_surface_at(tri, ray, hit);
     const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
@@ -226,6 +240,13 @@ GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, G
     res.path = path;
     res.flags |= GC_VERTEX_CONTINUE;
     return res;
+}
+
+/* Shades the vertex where `ray` (the path's last segment) ended with `hit`, in a flat scene. */
+GC_FUNC GcVertexResult gc_shade_vertex(GC_SHADE_PARAMS, GcRenderParams params, GcPathState path, GcRay ray, GcHit hit)
+{
+    if (hit.prim == GC_INVALID) return gc_shade_escape(GC_SHADE_ARGS, params, path, ray);
+    return gc_shade_surface(GC_SHADE_ARGS, params, path, ray, hit, GC_ATTRIB(hit.prim));
 }
 
 GC_NAMESPACE_END
