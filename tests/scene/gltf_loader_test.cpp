@@ -749,6 +749,38 @@ TEST(GltfInstanced, MeshDrawnByThreeNodesIsStoredOnce)
     EXPECT_LT(worst, 1e-5f);
 }
 
+// The corpus file whose 3000 nodes draw one 5.6M-triangle mesh: flattened, the loader refuses
+// it before reading a vertex; kept instanced, the mesh is stored once (and then refused for
+// its zero area, as the corpus expects of the CLI, which keeps instances).
+TEST(GltfInstanced, AbsurdFlattenedTotalIsRefusedOnlyWhenFlattening)
+{
+    const std::filesystem::path file =
+        std::filesystem::path(GC_TEST_SOURCE_DIR) / "tests/data/bad/gltf_instances_absurd_total.gltf";
+    expect_input_error([&] { load_scene(file); }, {"gltf_instances_absurd_total.gltf", "mesh instances add up to"});
+    const auto loaded = load_gltf_instanced_where_reused(file);
+    ASSERT_EQ(loaded.index(), 1u);
+    const InstancedScene& s = std::get<InstancedScene>(loaded);
+    std::printf("instanced: %zu mesh triangles drawn by %zu instances\n", s.meshes.triangle_count(), s.instances.size());
+    EXPECT_EQ(s.instances.size(), 3000u);
+    EXPECT_EQ(s.mesh_ranges.size(), 1u);
+    expect_input_error([&] { load_scene_keeping_instances(file); }, {"gltf_instances_absurd_total.gltf", "zero area"});
+}
+
+TEST(GltfInstanced, OnlyReusedMeshesComeBackInstanced)
+{
+    ScratchDir dir;
+    Doc doc;
+    const auto once = write_gltf(dir, doc);
+    EXPECT_EQ(load_gltf_instanced_where_reused(once).index(), 0u);
+    doc.nodes = R"([{"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}])";
+    doc.scenes = R"([{"nodes": [0, 1]}])";
+    const auto twice = write_gltf(dir, doc);
+    const auto loaded = load_gltf_instanced_where_reused(twice);
+    ASSERT_EQ(loaded.index(), 1u);
+    EXPECT_EQ(std::get<InstancedScene>(loaded).instances.size(), 2u);
+    EXPECT_EQ(std::get<InstancedScene>(loaded).meshes.triangle_count(), 1u);
+}
+
 TEST(GltfInstanced, CycleAndBadMeshIndexNameTheFile)
 {
     ScratchDir dir;
