@@ -1,5 +1,6 @@
 #include "host/scene/instances.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -65,20 +66,19 @@ void validate_instances(const InstancedScene& scene)
 
 namespace {
 
-// Appends the triangles of one instance (mesh range `r`, transform `m`) that `keep` accepts
-// to `out`, in world space, in mesh order (see flatten_instances for the arithmetic and
-// `winding`).
-template <class Keep>
-void append_instance(Scene& out, const Scene& src, const MeshRange& r, const glm::mat4& m, MirroredWinding winding,
-                     Keep keep)
+// Appends triangles `first` .. `end` of `src` (one instance's, in mesh order, or the ones
+// `pick` lists when given) through the instance's transform `m` to `out`, in world space (see
+// flatten_instances for the arithmetic and `winding`).
+void append_instance(Scene& out, const Scene& src, std::uint32_t first, std::uint32_t end, const glm::mat4& m,
+                     MirroredWinding winding, const std::vector<std::uint32_t>* pick = nullptr)
 {
     const glm::mat3 normal_map = glm::transpose(glm::mat3(world_to_object(m)));
     const bool swap = winding == MirroredWinding::FrontStaysFront && glm::determinant(glm::mat3(m)) < 0.0f;
     static constexpr int kKept[3] = {0, 1, 2};
     static constexpr int kSwapped[3] = {0, 2, 1};
     const int* corners = swap ? kSwapped : kKept;
-    for (std::uint32_t t = r.first_triangle; t < r.first_triangle + r.triangle_count; ++t) {
-        if (!keep(t)) continue;
+    for (std::uint32_t i = first; i < end; ++i) {
+        const std::uint32_t t = pick ? (*pick)[i] : i;
         for (int c : {corners[0], corners[1], corners[2]}) {
             const std::size_t k = 3 * std::size_t{t} + c;
             out.positions.push_back(Point3(apply(m, src.positions[k].glm(), 1.0f)));
@@ -114,9 +114,10 @@ Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding)
     out.has_vertex_normals.reserve(total);
     if (!src.uvs.empty()) out.uvs.reserve(3 * total);
     if (!src.tangents.empty()) out.tangents.reserve(3 * total);
-    for (const Instance& inst : scene.instances)
-        append_instance(out, src, scene.mesh_ranges[inst.mesh], inst.object_to_world, winding,
-                        [](std::uint32_t) { return true; });
+    for (const Instance& inst : scene.instances) {
+        const MeshRange& r = scene.mesh_ranges[inst.mesh];
+        append_instance(out, src, r.first_triangle, r.first_triangle + r.triangle_count, inst.object_to_world, winding);
+    }
     return out;
 }
 
@@ -125,10 +126,21 @@ Scene with_world_emitters(const InstancedScene& scene)
     validate_instances(scene);
     Scene out = scene.meshes;
     const Scene& src = scene.meshes;
-    auto emits = [&](std::uint32_t t) { return src.materials[src.material_ids[t]].is_emissive(); };
+    // Each mesh's emissive triangles, listed once: a million instances of a mesh without one
+    // then cost a million empty appends, not a look at every triangle they draw.
+    const std::vector<std::uint32_t> emissive = src.emissive_triangles();
+    std::vector<std::uint32_t> first(scene.mesh_ranges.size()), end(scene.mesh_ranges.size());
+    for (std::size_t m = 0; m < scene.mesh_ranges.size(); ++m) {
+        const MeshRange& r = scene.mesh_ranges[m];
+        const auto lo = std::lower_bound(emissive.begin(), emissive.end(), r.first_triangle);
+        const auto hi = std::lower_bound(lo, emissive.end(), r.first_triangle + r.triangle_count);
+        first[m] = static_cast<std::uint32_t>(lo - emissive.begin());
+        end[m] = static_cast<std::uint32_t>(hi - emissive.begin());
+    }
     for (const Instance& inst : scene.instances)
-        append_instance(out, src, scene.mesh_ranges[inst.mesh], inst.object_to_world, MirroredWinding::FrontStaysFront,
-                        emits);
+        if (first[inst.mesh] < end[inst.mesh])
+            append_instance(out, src, first[inst.mesh], end[inst.mesh], inst.object_to_world,
+                            MirroredWinding::FrontStaysFront, &emissive);
     return out;
 }
 

@@ -25,6 +25,28 @@ TEST(FrameHash, SameSceneSameHash)
     EXPECT_EQ(scene_content_hash(one_triangle()), scene_content_hash(one_triangle()));
 }
 
+// An instanced scene hashes its meshes and its instances: a moved or added instance, or
+// another mesh drawn, is another scene.
+TEST(FrameHash, EveryInstanceChangesTheInstancedSceneHash)
+{
+    InstancedScene s;
+    s.meshes = one_triangle();
+    s.mesh_ranges.push_back({0, 1});
+    s.instances.push_back({0, glm::mat4(1.0f)});
+    s.instances.push_back({0, glm::mat4(2.0f)});
+    s.instances[1].object_to_world[3][3] = 1.0f;
+    const std::uint64_t plain = scene_content_hash(s);
+    EXPECT_EQ(plain, scene_content_hash(InstancedScene(s)));
+    EXPECT_NE(plain, scene_content_hash(s.meshes));
+    InstancedScene moved = s;
+    moved.instances[1].object_to_world[3][0] = 0.5f;
+    InstancedScene added = s;
+    added.instances.push_back(s.instances[0]);
+    InstancedScene recoloured = s;
+    recoloured.meshes.materials[0].albedo = glm::vec3(0.1f);
+    for (const InstancedScene* other : {&moved, &added, &recoloured}) EXPECT_NE(plain, scene_content_hash(*other));
+}
+
 TEST(FrameHash, EveryUvTransformSlotChangesTheSceneHash)
 {
     const std::uint64_t plain = scene_content_hash(one_triangle());

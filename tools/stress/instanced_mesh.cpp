@@ -1,10 +1,12 @@
 // geocold-instances: the instancing stress scene. One mesh (the 100k-triangle dragon for the
 // acceptance run) copied N times on a cubic grid under seeded random rotations, rendered
 // through the two-level BVH as first-hit AOVs (kernels/aov_instances.cl, one sample per
-// pixel). Prints the device bytes of the meshes and of the instances (and per instance), and
-// writes the image when asked.
+// pixel) or, with --spp, path traced under a white sky (megakernel.cl on the instanced scene).
+// Prints the device bytes of the meshes and of the instances (and per instance), and writes
+// the image when asked.
 //
 //     geocold-instances --mesh dragon.obj --instances 1000000 --device gpu --out dragons.png
+//     geocold-instances --mesh dragon.obj --instances 1000000 --spp 16 --out dragons-path.png
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +28,7 @@
 #include "host/render/device_bvh.h"
 #include "host/render/device_scene.h"
 #include "host/render/integrator.h"
+#include "host/render/renderer.h"
 #include "host/render/scene_convert.h"
 #include "host/scene/instances.h"
 #include "host/scene/load.h"
@@ -44,6 +47,7 @@ struct Options {
     std::uint32_t seed = 1;
     std::string out;
     AovKind aov = AovKind::Preview;
+    std::uint32_t spp = 0;  // 0: the AOV; else path traced with this many samples per pixel
 };
 
 const char* kUsage =
@@ -55,8 +59,9 @@ const char* kUsage =
     "  --size WxH         primary rays (default 256x256)\n"
     "  --seed S           rotations' seed (default 1)\n"
     "  --aov NAME         preview, albedo, normal, depth or primid (default preview)\n"
+    "  --spp N            path trace N samples per pixel under a white sky instead of the AOV\n"
     "  --out FILE         the image (.png, .exr, ...; linear formats keep the values)\n"
-    "Exit status: 0 success, 1 no ray hit, otherwise geocold-cl's codes (usage, input, device).\n";
+    "Exit status: 0 success, 1 no ray hit (path: a black image), otherwise geocold-cl's codes (usage, input, device).\n";
 
 std::optional<BvhLayout> layout_of(const Options& o)
 {
@@ -85,6 +90,7 @@ Options parse(int argc, char** argv)
                 throw UsageError("--size wants WxH, got '" + v + "'");
         } else if (a == "--seed") o.seed = static_cast<std::uint32_t>(std::stoul(value()));
         else if (a == "--out") o.out = value();
+        else if (a == "--spp") o.spp = static_cast<std::uint32_t>(std::stoul(value()));
         else if (a == "--aov") {
             const std::string v = value();
             const std::optional<AovKind> k = aov_from_name(v);
@@ -132,6 +138,68 @@ InstancedScene make_scene(Scene mesh, std::size_t n, std::uint32_t seed, float& 
     return s;
 }
 
+// A pinhole camera just outside the grid's corner, looking along its diagonal: the nearest
+// copies fill the foreground, the rest recede to the far corner.
+Camera grid_camera(float spacing, int side)
+{
+    const float extent = spacing * float(side);
+    Camera camera;
+    camera.look_from = Point3(-1.2f * spacing, 0.5f * extent, -1.6f * spacing);
+    camera.look_at = Point3(extent, 0.35f * extent, extent);
+    camera.vfov_degrees = 50.0f;
+    return camera;
+}
+
+void write_film(const Options& o, const Film& film, const std::string& device, const char* integrator, double seconds)
+{
+    if (o.out.empty()) return;
+    ImageMetadata meta;
+    meta.device = device;
+    meta.integrator = integrator;
+    meta.scene = o.mesh + " x " + std::to_string(o.instances);
+    meta.spp = o.spp > 0 ? o.spp : 1;
+    meta.seconds = seconds;
+    write_image(o.out, film, meta);
+}
+
+// Path traced through DeviceScene::upload_instanced and a Renderer, as geocold-cl renders a
+// glTF that reuses meshes.
+int run_path(const Options& o, const cl::DeviceInfo& device, const InstancedScene& scene, const InstanceBvhParts& parts,
+             float spacing, int side)
+{
+    const cl::Context context(device);
+    DeviceTuning tuning;
+    tuning.bvh_layout = bvh_layout_for(device, layout_of(o));
+    auto device_scene =
+        std::make_shared<const DeviceScene>(DeviceScene::upload_instanced(context, scene, parts, {}, tuning));
+    const std::uint64_t instance_bytes =
+        device_scene->instance_level.tlas.bytes() + device_scene->instance_level.instances.bytes();
+    std::printf("device %s, layout %s\n", device.device_name.c_str(), layout_name(device_scene->bvh.layout()));
+    std::printf("device bytes: meshes %llu (trees and shading data), instances %llu (%.1f per instance)\n",
+                (unsigned long long)(device_scene->bytes() - instance_bytes), (unsigned long long)instance_bytes,
+                double(instance_bytes) / double(o.instances));
+    RenderSettings settings;
+    settings.width = o.width;
+    settings.height = o.height;
+    settings.spp = o.spp;
+    settings.env_radiance = glm::vec3(1.0f);
+    RenderSetup setup;
+    setup.tuning = tuning;
+    Renderer renderer(context, device_scene, grid_camera(spacing, side), settings, setup);
+    const auto t0 = std::chrono::steady_clock::now();
+    renderer.render(0, o.spp);
+    const double render_s = seconds_since(t0);
+    const Film film = renderer.film();
+    double mean = 0.0;
+    for (std::uint32_t y = 0; y < film.height(); ++y)
+        for (std::uint32_t x = 0; x < film.width(); ++x) mean += film.at(x, y).g;
+    mean /= double(film.width()) * film.height();
+    std::printf("path traced %dx%d, %u spp in %.3f s (%.2f Msamples/s), mean green %.4f\n", o.width, o.height, o.spp,
+                render_s, double(o.width) * o.height * o.spp / render_s * 1e-6, mean);
+    write_film(o, film, device.device_name, "path", render_s);
+    return mean > 0.0 ? 0 : 1;
+}
+
 template <class Bvh>
 int run(const Options& o, const cl::DeviceInfo& device, const InstancedScene& scene, const Bvh& bvh, float spacing,
         int side)
@@ -156,13 +224,7 @@ int run(const Options& o, const cl::DeviceInfo& device, const InstancedScene& sc
                 double(instance_bytes) / double(o.instances), (unsigned long long)(mesh_bytes + instance_bytes), drawn,
                 double(mesh_bytes + instance_bytes) / double(drawn));
 
-    // A pinhole camera just outside the grid's corner, looking along its diagonal: the nearest
-    // copies fill the foreground, the rest recede to the far corner.
-    const float extent = spacing * float(side);
-    Camera camera;
-    camera.look_from = Point3(-1.2f * spacing, 0.5f * extent, -1.6f * spacing);
-    camera.look_at = Point3(extent, 0.35f * extent, extent);
-    camera.vfov_degrees = 50.0f;
+    const Camera camera = grid_camera(spacing, side);
     RenderSettings settings;
     settings.width = o.width;
     settings.height = o.height;
@@ -188,15 +250,7 @@ int run(const Options& o, const cl::DeviceInfo& device, const InstancedScene& sc
     }
     std::printf("rendered %ux%u (%s, 1 sample) in %.3f s: %zu pixels on geometry (%.1f %%)\n", params.width,
                 params.height, aov_name(o.aov), render_s, lit, 100.0 * double(lit) / params.pixel_count);
-    if (!o.out.empty()) {
-        ImageMetadata meta;
-        meta.device = device.device_name;
-        meta.integrator = "aov";
-        meta.scene = o.mesh + " x " + std::to_string(o.instances);
-        meta.spp = 1;
-        meta.seconds = render_s;
-        write_image(o.out, film, meta);
-    }
+    write_film(o, film, device.device_name, "aov", render_s);
     return lit > 0 ? 0 : 1;
 }
 
@@ -221,6 +275,7 @@ int main(int argc, char** argv)
         const InstanceBvhParts parts = build_instance_bvh(scene);
         std::printf("two-level BVH built in %.2f s\n", seconds_since(t1));
         const cl::DeviceInfo device = cl::select_device(o.device);
+        if (o.spp > 0) return run_path(o, device, scene, parts, spacing, side);
         switch (bvh_layout_for(device, layout_of(o))) {
         case BvhLayout::Binary: return run(o, device, scene, assemble_binary(parts), spacing, side);
         case BvhLayout::Wide: return run(o, device, scene, assemble_wide(parts), spacing, side);
