@@ -2,7 +2,7 @@
 # Every GPU recipe in one device call (the tool's limit is 10 minutes a call, 8 files back):
 # the bare build with the bench tools and the Python module (multi-device-run.sh build), the
 # Python/CLI parity (python-parity.sh), one round of the multi-device runs, the 10^6-dragon
-# instancing preview, the gradients against Mitsuba (gradients.sh, with Mitsuba where
+# instancing preview and path trace, the gradients against Mitsuba (gradients.sh, with Mitsuba where
 # `GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh` carried it) and, with the time left, a
 # second round of the multi-device runs. Each step has its own time limit; the logs end up in
 # one archive, $OUT/all.tgz, and steps.log in it says how each step ended and when.
@@ -25,6 +25,10 @@ step "multi-device runs rc=$?"
 timeout 40 build/bare/geocold-instances --mesh .deps/shared/scenes/stanford-dragon-100k/dragon.obj \
     --instances 1000000 --device gpu --size 640x480 --out "$OUT/dragons.pfm" > "$OUT/instances.log" 2>&1
 step "instances rc=$?"
+timeout 60 build/bare/geocold-instances --mesh .deps/shared/scenes/stanford-dragon-100k/dragon.obj \
+    --instances 1000000 --device gpu --size 640x480 --spp 16 --out "$OUT/dragons-path.pfm" \
+    > "$OUT/instances-path.log" 2>&1
+step "instances, path traced rc=$?"
 if [ "$(left)" -gt 30 ]; then
     GEOCOLD_GRAD_REPEATS=3 timeout "$(left)" tools/device/gradients.sh > /dev/null 2>&1
     step "gradients rc=$?"

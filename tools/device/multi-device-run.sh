@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # On the GPU node (through the device tool, carrying .deps/): builds the bare configuration with
-# the bench tools, runs the chunk and multi-device tests there (GPU + PoCL), then times
+# the bench tools, runs the chunk, multi-device and instanced-path tests there (GPU + PoCL), then times
 # --device gpu, cpu and all at 1024^2 (the default 64-sample chunks) on the Cornell box, the dragon and the generated
 # 5.2M-triangle scene (geocold-large-mesh), two rounds each; on the first two also chunk sizes
 # of 128 and one chunk (the per-chunk cost). Prints each run's samples/s line, each device's
@@ -15,7 +15,7 @@ if [ "$what" != runs ]; then
 # The Python module too, so that tools/device/python-parity.sh (PY_BUILD_DIR=build/bare) finds it built.
 GEOCOLD_CMAKE_ARGS="-DGEOCOLD_BUILD_BENCH=ON -DGEOCOLD_PYTHON=ON -DPython_EXECUTABLE=$(command -v python3) -Dnanobind_DIR=$(python3 -m nanobind --cmake_dir)" \
   tools/device/build-and-test.sh \
-  -R 'chunks_test|multi_device_test|MultiDevice|ChunkHandoff|AddsTooLittle|BackupGain|ChunkPlan|FrameAcc|PartialImage|MeanFilm|AskSize' > "$OUT/build.log" 2>&1
+  -R 'chunks_test|multi_device_test|MultiDevice|ChunkHandoff|AddsTooLittle|BackupGain|ChunkPlan|FrameAcc|PartialImage|MeanFilm|AskSize|InstancedPath' > "$OUT/build.log" 2>&1
 echo "build+tests rc=$?" | tee -a "$log"
 grep -E "tests passed|Failed|FAILED" "$OUT/build.log" | tail -8 >> "$log"
 fi
