@@ -83,8 +83,10 @@ std::uint64_t scene_content_hash(const Scene& scene)
                             l.attenuation_color.x, l.attenuation_color.y, l.attenuation_color.z, l.attenuation_distance})
                 add_value(h, v);
             for (bool on : {l.clearcoat_on, l.specular_on, l.sheen_on, l.volume_on}) add_value(h, std::uint8_t(on));
+            add_value(h, l.clearcoat_normal_scale);
             for (const TextureRef* r : {&l.clearcoat_texture, &l.clearcoat_roughness_texture, &l.specular_texture,
-                                        &l.specular_color_texture, &l.sheen_color_texture, &l.sheen_roughness_texture}) {
+                                        &l.specular_color_texture, &l.sheen_color_texture, &l.sheen_roughness_texture,
+                                        &l.clearcoat_normal_texture, &l.transmission_texture}) {
                 add_value(h, r->texture);
                 for (float v : {r->uv.offset.x, r->uv.offset.y, r->uv.rotation, r->uv.scale.x, r->uv.scale.y})
                     add_value(h, v);

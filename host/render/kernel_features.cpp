@@ -9,7 +9,8 @@ namespace {
 bool has_texture(const dev::GcMaterial& m)
 {
     const bool coat = (m.flags & GC_MATF_CLEARCOAT) != 0u &&
-                      (m.coat_texture != GC_INVALID || m.coat_roughness_texture != GC_INVALID);
+                      (m.coat_texture != GC_INVALID || m.coat_roughness_texture != GC_INVALID ||
+                       m.coat_normal_texture != GC_INVALID);
     const bool specular = (m.flags & GC_MATF_SPECULAR) != 0u &&
                           (m.specular_texture != GC_INVALID || m.specular_color_texture != GC_INVALID);
     const bool sheen = (m.flags & GC_MATF_SHEEN) != 0u &&
@@ -39,7 +40,8 @@ KernelFeatures kernel_features(std::span<const dev::GcMaterial> materials, std::
     f.material_types = 0u;
     for (const dev::GcMaterial& m : materials) {
         f.textures = f.textures || has_texture(m);
-        f.normal_maps = f.normal_maps || m.normal_texture != GC_INVALID;
+        f.normal_maps = f.normal_maps || m.normal_texture != GC_INVALID ||
+                        ((m.flags & GC_MATF_CLEARCOAT) != 0u && m.coat_normal_texture != GC_INVALID);
         // A superset of the triangles flatten() flags GC_TRI_ALPHA_TESTED: an untextured MASK
         // material above its cutoff is solid and not flagged, but keeping the test is harmless.
         f.alpha_mask = f.alpha_mask || (m.flags & GC_MATF_ALPHA_MASK) != 0u;

@@ -211,6 +211,8 @@ std::vector<dev::GcMaterial> make_materials(const Scene& scene)
         d.sheen_color_texture = slots[kSlotSheenColor];
         d.sheen_roughness_texture = slots[kSlotSheenRoughness];
         d.transmission_texture = slots[kSlotTransmission];
+        d.coat_normal_texture = slots[kSlotClearcoatNormal];
+        d.coat_normal_scale = l.clearcoat_normal_scale;
         out.push_back(d);
     }
     return out;
@@ -281,7 +283,7 @@ TextureViews texture_views(const Scene& scene)
                                       ref(l.clearcoat_texture), ref(l.clearcoat_roughness_texture),
                                       ref(l.specular_texture), ref(l.specular_color_texture),
                                       ref(l.sheen_color_texture), ref(l.sheen_roughness_texture),
-                                      ref(l.transmission_texture)});
+                                      ref(l.transmission_texture), ref(l.clearcoat_normal_texture)});
     }
     return out;
 }

@@ -28,7 +28,7 @@ struct DeviceTextures {
 enum MaterialSlot : std::size_t {
     kSlotAlbedo, kSlotMetallicRoughness, kSlotNormal, kSlotEmission,
     kSlotClearcoat, kSlotClearcoatRoughness, kSlotSpecular, kSlotSpecularColor, kSlotSheenColor, kSlotSheenRoughness,
-    kSlotTransmission, kMaterialSlots
+    kSlotTransmission, kSlotClearcoatNormal, kMaterialSlots
 };
 struct TextureViews {
     std::vector<dev::GcTexture> views;

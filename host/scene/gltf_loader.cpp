@@ -498,12 +498,8 @@ private:
             return r;
         };
         const std::string context = m_name + ": " + where;
-        if (const auto it = m.extensions.find("KHR_materials_clearcoat"); it != m.extensions.end()) {
+        if (const auto it = m.extensions.find("KHR_materials_clearcoat"); it != m.extensions.end())
             read_clearcoat(it->second, context, resolve, layers);
-            if (it->second.Has("clearcoatNormalTexture"))
-                log_warning(context + ": KHR_materials_clearcoat clearcoatNormalTexture is ignored (the coat uses the "
-                                      "base's shading normal)");
-        }
         if (const auto it = m.extensions.find("KHR_materials_transmission"); it != m.extensions.end())
             read_transmission_texture(it->second, context, resolve, layers);
         if (const auto it = m.extensions.find("KHR_materials_specular"); it != m.extensions.end())

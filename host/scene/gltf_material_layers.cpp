@@ -1,6 +1,7 @@
 #include "host/scene/gltf_material_layers.h"
 
 #include <cmath>
+#include <limits>
 
 #include <tiny_gltf.h>
 
@@ -62,10 +63,12 @@ void read_clearcoat(const tinygltf::Value& ext, const std::string& where, const 
     const char* name = "KHR_materials_clearcoat";
     layers.clearcoat_texture = texture_ref(ext, name, "clearcoatTexture", false, where, texture);
     layers.clearcoat_roughness_texture = texture_ref(ext, name, "clearcoatRoughnessTexture", false, where, texture);
-    // Checked like the others so a malformed file is still refused, though the coat shares the
-    // base's shading normal (gc_bsdf.h) and the texture is not read.
-    texture_ref(ext, name, "clearcoatNormalTexture", false, where,
-                [](const tinygltf::Value&, bool, const std::string&) { return TextureRef{}; });
+    layers.clearcoat_normal_texture = texture_ref(ext, name, "clearcoatNormalTexture", false, where, texture);
+    if (layers.clearcoat_normal_texture.texture >= 0) {
+        const tinygltf::Value& info = ext.Get("clearcoatNormalTexture");
+        layers.clearcoat_normal_scale = factor(info, "scale", 1.0f, ctx + " clearcoatNormalTexture",
+                                               -std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
+    }
 }
 
 void read_specular(const tinygltf::Value& ext, const std::string& where, const LayerTextureResolver& texture,

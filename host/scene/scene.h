@@ -49,6 +49,8 @@ struct PbrLayers {
     float clearcoat_roughness = 0.0f;
     TextureRef clearcoat_texture;    // R: factor
     TextureRef clearcoat_roughness_texture; // G: roughness
+    TextureRef clearcoat_normal_texture; // the coat's own tangent-space normal map (linear)
+    float clearcoat_normal_scale = 1.0f; // its normalTextureInfo scale
     bool specular_on = false;        // KHR_materials_specular
     float specular = 1.0f;           // specularFactor
     glm::vec3 specular_color{1.0f};  // specularColorFactor (linear)

@@ -42,6 +42,7 @@
 #define GC_BSDF_H
 
 #include "gc_platform.h"
+#include "gc_frame.h"
 #include "gc_types.h"
 #include "gc_vecmath.h"
 #include "gc_sampling.h"
@@ -199,8 +200,10 @@ GC_FUNC float gc_phong_pdf_upper(float p_spec, float exponent, float3 wo, float3
  * clearcoatRoughness^2) over all of the above, as the spec's fresnel_coat:
  *   f_coated = f * (1 - c F_c) + c F_c D_c G2_c / (4 |n.wo| |n.wi|),  F_c = 0.04 + 0.96 (1 - |n.wo|)^5
  * with c the clearcoat factor. F_c is taken at wo alone, so a coated f is not reciprocal (the
- * spec's choice). The coat shares the base's shading normal: clearcoatNormalTexture is not
- * modelled (the loader warns). The coat lies over the sheen.
+ * spec's choice). With clearcoatNormalTexture the coat has its own normal n_c
+ * (GC_MATF_COAT_NORMAL: m.coat_normal, in the shading frame), and F_c, D_c and G2_c are taken in
+ * n_c's frame; the coat reflects only where wo and wi are both above n_c. The coat lies over
+ * the sheen.
  *
  * KHR_materials_transmission at roughness 0 is thin-walled: a DELTA lobe straight through the
  * surface (wi = -wo), weight (1 - metallic) * transmission * (1 - F_d(|wo.z|)) * base, the
@@ -376,6 +379,48 @@ GC_FUNC float gc_pbr_coat_weight(GcMaterial m, float cos_o)
     return clamp(m.coat.x, 0.0f, 1.0f) * (0.04f + 0.96f * gc_schlick_weight(cos_o));
 }
 
+/* Whether the coat has its own normal (gc_with_coat_normal); constant false without normal
+ * maps or coats in the program. */
+#define gc_pbr_coat_tilted(m) (GC_USE_NORMAL_MAPS * GC_USE_CLEARCOAT != 0 && ((m).flags & GC_MATF_COAT_NORMAL) != 0u)
+
+/* w (in the shading frame) in the coat's frame, and back: the identity for an untilted coat. */
+GC_FUNC float3 gc_pbr_to_coat(GcMaterial m, float3 w)
+{
+    if (!gc_pbr_coat_tilted(m)) return w;
+    return gc_frame_to_local(gc_frame_from_normal(GC_XYZ(m.coat_normal)), w);
+}
+
+GC_FUNC float3 gc_pbr_from_coat(GcMaterial m, float3 w)
+{
+    if (!gc_pbr_coat_tilted(m)) return w;
+    return gc_frame_to_world(gc_frame_from_normal(GC_XYZ(m.coat_normal)), w);
+}
+
+/* The coat's weight for wo (upper hemisphere of the shading frame): c F_c at n_c.wo, which is
+ * wo.z for an untilted coat; a wo below a tilted coat's horizon sees the coat at grazing. */
+GC_FUNC float gc_pbr_coat_weight_for(GcMaterial m, float3 wo)
+{
+    return gc_pbr_coat_weight(m, gc_pbr_coat_tilted(m) ? fmax(gc_pbr_to_coat(m, wo).z, 0.0f) : wo.z);
+}
+
+/* The coat's GGX lobe, D_c G2_c / (4 |n_c.wo| |n_c.wi|), and the density of sampling it. */
+GC_FUNC float gc_pbr_coat_lobe(GcMaterial m, float3 wo, float3 wi)
+{
+    const float3 o = gc_pbr_to_coat(m, wo);
+    const float3 i = gc_pbr_to_coat(m, wi);
+    if (gc_pbr_coat_tilted(m) && (!(o.z > 0.0f) || !(i.z > 0.0f))) return 0.0f;
+    const float alpha = gc_pbr_coat_alpha(m);
+    return gc_ggx_d(gc_normalize(o + i), alpha) * gc_ggx_g2(o, i, alpha) / (4.0f * o.z * i.z);
+}
+
+GC_FUNC float gc_pbr_coat_pdf(GcMaterial m, float3 wo, float3 wi)
+{
+    const float3 o = gc_pbr_to_coat(m, wo);
+    const float3 i = gc_pbr_to_coat(m, wi);
+    if (gc_pbr_coat_tilted(m) && (!(o.z > 0.0f) || !(i.z > 0.0f))) return 0.0f;
+    return gc_ggx_reflection_pdf(o, i, gc_pbr_coat_alpha(m));
+}
+
 /* ---- KHR_materials_sheen */
 
 #define GC_SHEEN_MIN_ROUGHNESS 0.07f
@@ -443,11 +488,12 @@ GC_FUNC float gc_pbr_sheen_weight(GcMaterial m, float cos_theta)
     return clamp(c * gc_sheen_albedo(cos_theta, gc_sheen_roughness(m)), 0.0f, 1.0f);
 }
 
-/* Probabilities (coat, sheen) of sampling each layer for wo.z = cos_o: each layer's weight
- * against what lies beneath, scaled by what the layer lets through. */
-GC_FUNC float2 gc_pbr_layer_probs(GcMaterial m, float3 base, float cos_o)
+/* Probabilities (coat, sheen) of sampling each layer for wo (upper hemisphere): each layer's
+ * weight against what lies beneath, scaled by what the layer lets through. */
+GC_FUNC float2 gc_pbr_layer_probs(GcMaterial m, float3 base, float3 wo)
 {
-    const float wc = gc_pbr_coat_weight(m, cos_o);
+    const float cos_o = wo.z;
+    const float wc = gc_pbr_coat_weight_for(m, wo);
     const float ws = gc_pbr_sheen_weight(m, cos_o);
     if (!(wc > 0.0f) && !(ws > 0.0f)) return make_float2(0.0f, 0.0f);
     const float3 w = gc_pbr_lobe_weights(m, base, cos_o);
@@ -484,11 +530,9 @@ GC_FUNC float3 gc_pbr_eval_upper(GcMaterial m, float3 base, float3 wo, float3 wi
         const float3 colour = fmax(GC_XYZ(m.sheen), make_float3(0.0f, 0.0f, 0.0f));
         f = f * scale + colour * gc_sheen_eval_white(wo, wi, gc_sheen_roughness(m));
     }
-    const float wc = gc_pbr_coat_weight(m, wo.z);
+    const float wc = gc_pbr_coat_weight_for(m, wo);
     if (!(wc > 0.0f)) return f;
-    const float alpha = gc_pbr_coat_alpha(m);
-    const float3 wm = gc_normalize(wo + wi);
-    const float coat = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z);
+    const float coat = gc_pbr_coat_lobe(m, wo, wi);
     return f * (1.0f - wc) + make_float3(coat, coat, coat) * wc;
 }
 
@@ -496,9 +540,9 @@ GC_FUNC float gc_pbr_pdf_upper(GcMaterial m, float3 base, float3 wo, float3 wi)
 {
     const float3 p = gc_pbr_lobe_probs(m, base, wo.z);
     float pdf = p.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_alpha(m)) + p.y * gc_cosine_hemisphere_pdf(wi.z);
-    const float2 layers = gc_pbr_layer_probs(m, base, wo.z);
+    const float2 layers = gc_pbr_layer_probs(m, base, wo);
     if (layers.y > 0.0f) pdf = layers.y * GC_INV_2PI + (1.0f - layers.y) * pdf;
-    if (layers.x > 0.0f) pdf = layers.x * gc_ggx_reflection_pdf(wo, wi, gc_pbr_coat_alpha(m)) + (1.0f - layers.x) * pdf;
+    if (layers.x > 0.0f) pdf = layers.x * gc_pbr_coat_pdf(m, wo, wi) + (1.0f - layers.x) * pdf;
     return pdf;
 }
 
@@ -514,6 +558,12 @@ GC_FUNC bool gc_pbr_rough_transmission(GcMaterial m)
 GC_FUNC GcMaterial gc_pbr_from_side(GcMaterial m, float side)
 {
     if (side < 0.0f && gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m)) m.flags |= GC_MATF_SEEN_FROM_INSIDE;
+    /* Seen from below, the surface is its own front with the normal -n: the coat's normal is
+     * -n_c, which in the flipped frame (z mirrored, gc_bsdf_flip) is n_c with x and y negated;
+     * an untilted coat (0, 0, 1) stays as it is, as the coat of the flat model does. Applied
+     * once per eval, pdf or sample (gc_bsdf_finish_sample is given the material unturned). */
+    if (side < 0.0f && gc_pbr_coat_tilted(m))
+        m.coat_normal = make_float4(-m.coat_normal.x, -m.coat_normal.y, m.coat_normal.z, 0.0f);
     return m;
 }
 
@@ -546,7 +596,7 @@ GC_FUNC float3 gc_pbr_rough_transmission_eval_lower(GcMaterial m, float3 base, f
     const float metallic = clamp(m.pbr.x, 0.0f, 1.0f);
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
     const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(gc_pbr_fresnel_cos(m, dot_o))));
-    const float wc = gc_pbr_coat_weight(m, wo.z);
+    const float wc = gc_pbr_coat_weight_for(m, wo);
     const float ws = gc_pbr_sheen_weight(m, wo.z);
     return base * ((1.0f - metallic) * trans * (1.0f - fd) * (1.0f - wc) * (1.0f - ws) * btdf);
 }
@@ -611,7 +661,7 @@ GC_FUNC float gc_bsdf_pdf(GcMaterial m, float3 albedo, float3 wo, float3 wi)
     wo = gc_bsdf_flip(wo, side);
     wi = gc_bsdf_flip(wi, side);
     if (gc_material_is(m, GC_MAT_PBR) && gc_pbr_rough_transmission(m) && wo.z > 0.0f && wi.z < 0.0f) {
-        const float2 layers = gc_pbr_layer_probs(m, albedo, wo.z);
+        const float2 layers = gc_pbr_layer_probs(m, albedo, wo);
         const float p_trans = (1.0f - layers.x) * (1.0f - layers.y) * gc_pbr_lobe_probs(m, albedo, wo.z).z;
         return p_trans * gc_pbr_rough_transmission_pdf_lower(m, wo, wi, gc_pbr_transmission_eta(m, side));
     }
@@ -687,7 +737,7 @@ GC_FUNC GcBsdfSample gc_pbr_sample_transmission(GcMaterial m, float3 base, float
     const float trans = clamp(m.pbr.w, 0.0f, 1.0f);
     const float fd = gc_max_component(gc_pbr_dielectric_fresnel(m, gc_schlick_weight(cos_o)));
     float3 t = base * ((1.0f - metallic) * trans * (1.0f - fd));
-    const float wc = gc_pbr_coat_weight(m, cos_o);
+    const float wc = gc_pbr_coat_weight_for(m, gc_bsdf_flip(wo, gc_bsdf_side(wo)));
     if (wc > 0.0f) t = t * (1.0f - wc);
     const float ws = gc_pbr_sheen_weight(m, cos_o);
     if (ws > 0.0f) t = t * (1.0f - ws);
@@ -706,6 +756,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
     if (gc_material_is(m, GC_MAT_DIELECTRIC)) return gc_dielectric_sample(m, wo, u0);
 
     float side = gc_bsdf_side(wo);
+    const GcMaterial given = m; /* for gc_bsdf_finish_sample, which turns it itself */
     m = gc_pbr_from_side(m, side);
     float3 wo_up = gc_bsdf_flip(wo, side);
     if (!(wo_up.z > 0.0f)) return gc_bsdf_no_sample();
@@ -737,7 +788,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
     } else if (gc_material_is(m, GC_MAT_PBR)) {
         /* The coat first, then the sheen, each with its probability; else u0 is rescaled to
          * pick the next layer down. */
-        const float2 layers = gc_pbr_layer_probs(m, albedo, wo_up.z);
+        const float2 layers = gc_pbr_layer_probs(m, albedo, wo_up);
         const float pc = layers.x;
         const float ps = layers.y;
         const bool coat = pc > 0.0f && u0 < pc;
@@ -748,6 +799,14 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
         if (sheen) {
             const float3 w = gc_sample_uniform_sphere(u1, u2);
             wi_up = make_float3(w.x, w.y, fabs(w.z));
+        } else if (coat && gc_pbr_coat_tilted(m)) {
+            /* In the coat's frame, then back; below either horizon the sample fails, where
+             * gc_bsdf_pdf's coat term is zero too. */
+            const float3 wo_c = gc_pbr_to_coat(m, wo_up);
+            if (!(wo_c.z > 0.0f)) return gc_bsdf_no_sample();
+            const float3 wm = gc_ggx_sample_visible_normal(wo_c, gc_pbr_coat_alpha(m), u1, u2);
+            wi_up = gc_pbr_from_coat(m, wm * (2.0f * gc_dot(wo_c, wm)) - wo_c);
+            if (!(wi_up.z > 0.0f)) return gc_bsdf_no_sample();
         } else if (coat || u0 < p.x) {
             const float alpha = coat ? gc_pbr_coat_alpha(m) : gc_pbr_alpha(m);
             const float3 wm = gc_ggx_sample_visible_normal(wo_up, alpha, u1, u2);
@@ -759,7 +818,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
             if (gc_pbr_rough_transmission(m)) {
                 wi_up = gc_pbr_sample_rough_transmission(m, wo_up, gc_pbr_transmission_eta(m, side), u1, u2);
                 if (!(wi_up.z < 0.0f)) return gc_bsdf_no_sample();
-                return gc_bsdf_finish_sample(m, albedo, wo, gc_bsdf_flip(wi_up, side));
+                return gc_bsdf_finish_sample(given, albedo, wo, gc_bsdf_flip(wi_up, side));
             }
             return gc_pbr_sample_transmission(m, albedo, wo, (1.0f - pc) * (1.0f - ps) * p.z);
         } else {
@@ -768,7 +827,7 @@ GC_FUNC GcBsdfSample gc_bsdf_sample(GcMaterial m, float3 albedo, float3 wo, floa
     } else {
         wi_up = gc_sample_cosine_hemisphere(u1, u2); /* Lambert */
     }
-    return gc_bsdf_finish_sample(m, albedo, wo, gc_bsdf_flip(wi_up, side));
+    return gc_bsdf_finish_sample(given, albedo, wo, gc_bsdf_flip(wi_up, side));
 }
 
 GC_NAMESPACE_END

@@ -16,6 +16,7 @@
 #ifndef GC_MATERIAL_EVAL_H
 #define GC_MATERIAL_EVAL_H
 
+#include "gc_frame.h"
 #include "gc_scene_buffers.h"
 #include "gc_tangent.h"
 #include "gc_texture.h"
@@ -102,15 +103,16 @@ GC_FUNC GcMaterial gc_shade_material(GC_SHADE_PARAMS, GcMaterial m, float2 uv)
     return m;
 }
 
-/* Shading normal with the material's tangent-space normal map applied, at barycentrics
- * bary = (u, v) of v1 and v2. The tangent is the file's per-vertex one interpolated, else the
- * host's per-triangle one (gc_triangle_tangent); it is re-orthogonalised against the
- * interpolated normal ns here (Gram-Schmidt), B = w * cross(ns, T). A perturbed normal that
- * would face away from ns's side (a texel at the grazing limit) keeps ns. */
-GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns, float2 uv)
+/* ns with the tangent-space normal map `texture` applied (xy scaled by `xy_scale`), at
+ * barycentrics bary = (u, v) of v1 and v2. The tangent is the file's per-vertex one
+ * interpolated, else the host's per-triangle one (gc_triangle_tangent); it is
+ * re-orthogonalised against the interpolated normal ns here (Gram-Schmidt),
+ * B = w * cross(ns, T). A perturbed normal that would face away from ns's side (a texel at the
+ * grazing limit) keeps ns. */
+GC_FUNC float3 gc_mapped_normal(GC_SHADE_PARAMS, uint texture, float xy_scale, GcTriangleAttribs a, float2 bary,
+                                float3 ns, float2 uv)
 {
     GC_SHADE_UNUSED();
-    if (GC_USE_NORMAL_MAPS == 0 || m.normal_texture == GC_INVALID) return ns;
     const float4 tangent = gc_triangle_tangent(a, bary.x, bary.y);
     const float3 t_tri = GC_XYZ(tangent);
     const float3 t_raw = t_tri - ns * gc_dot(ns, t_tri);
@@ -118,17 +120,41 @@ GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs 
     if (!(t_len > 1.0e-6f)) return ns;
     const float3 t = t_raw * (1.0f / t_len);
     const float3 b = gc_cross(ns, t) * tangent.w;
-    const GcTexture view = GC_TEXTURE(m.normal_texture);
+    const GcTexture view = GC_TEXTURE(texture);
     const float4 tex = gc_texture_sample(GC_TEXELS_ARG, view, uv.x, uv.y);
-    /* glTF normalTexture.scale multiplies x and y only (then the result is renormalised); a
+    /* glTF's normal texture scale multiplies x and y only (then the result is renormalised); a
      * view's uv transform turns them into the mesh's frame (gc_texture_tangent_xy). */
-    const float xy_scale = m.normal_scale;
     const float2 xy = gc_texture_tangent_xy(view, (2.0f * tex.x - 1.0f) * xy_scale, (2.0f * tex.y - 1.0f) * xy_scale);
     const float3 n = t * xy.x + b * xy.y + ns * (2.0f * tex.z - 1.0f);
     const float n_len = gc_length(n);
     if (!(n_len > 1.0e-6f)) return ns;
     const float3 nn = n * (1.0f / n_len);
     return gc_dot(nn, ns) > 0.0f ? nn : ns;
+}
+
+/* The shading normal: ns with the material's normal map applied. */
+GC_FUNC float3 gc_shade_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns, float2 uv)
+{
+    if (GC_USE_NORMAL_MAPS == 0 || m.normal_texture == GC_INVALID) return ns;
+    return gc_mapped_normal(GC_SHADE_ARGS, m.normal_texture, m.normal_scale, a, bary, ns, uv);
+}
+
+/* m with its coat's own normal (KHR_materials_clearcoat clearcoatNormalTexture: the map
+ * applied to the interpolated normal ns, not to the base's mapped normal) in `frame`, the
+ * shading frame the BSDF works in, for gc_bsdf.h's coat; m unchanged without that texture. */
+GC_FUNC GcMaterial gc_with_coat_normal(GC_SHADE_PARAMS, GcMaterial m, GcTriangleAttribs a, float2 bary, float3 ns,
+                                       float2 uv, GcFrame frame)
+{
+    if (GC_USE_NORMAL_MAPS == 0 || m.coat_normal_texture == GC_INVALID) return m;
+    if (GC_USE_CLEARCOAT == 0 || (m.flags & GC_MATF_CLEARCOAT) == 0u) return m;
+    const float3 n = gc_frame_to_local(frame, gc_mapped_normal(GC_SHADE_ARGS, m.coat_normal_texture,
+                                                               m.coat_normal_scale, a, bary, ns, uv));
+    /* A coat normal on the far side of the base's (two maps bent apart past 90 degrees) keeps
+     * the base's: gc_bsdf.h mirrors the coat with the directions and needs z > 0. */
+    if (!(n.z > 1.0e-4f)) return m;
+    m.coat_normal = make_float4(n.x, n.y, n.z, 0.0f);
+    m.flags |= GC_MATF_COAT_NORMAL;
+    return m;
 }
 
 /* Texture coordinates at barycentrics b = (b0, b1, b2) of the triangle's corners. */

@@ -95,7 +95,7 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
     const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
     const GcTriangleAttribs tri = GC_ATTRIB(hit.prim);
     const GcSurface s = gc_surface_at(tri, ray, hit);
-    const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
+    GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
 
     if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
@@ -117,6 +117,7 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
     const float3 albedo = GC_XYZ(base);
     const GcFrame frame =
         gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv));
+    m = gc_with_coat_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv, frame);
     const float3 wo = gc_frame_to_local(frame, wo_world);
     /* A vertex's value f enters its two terms as nee * f(wi_light) and bsdf * f(wi_sampled),
      * so d loss / d theta = nee . df(wi_light) + bsdf . df(wi_sampled) for each parameter

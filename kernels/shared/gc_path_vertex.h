@@ -120,7 +120,7 @@ GC_FUNC GcVertexResult gc_shade_surface(GC_SHADE_PARAMS, GcRenderParams params, 
     const float4 r_light = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
     const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
     const GcSurface s = gc_surface_at(tri, ray, hit);
-    const GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
+    GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
 
     /* KHR_materials_volume, Beer-Lambert: a segment that ran inside a volume mesh ends on that
@@ -174,6 +174,7 @@ GC_FUNC GcVertexResult gc_shade_surface(GC_SHADE_PARAMS, GcRenderParams params, 
     const float3 albedo = GC_XYZ(base);
     const GcFrame frame =
         gc_frame_from_normal(gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv));
+    m = gc_with_coat_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv, frame);
     const float3 wo = gc_frame_to_local(frame, wo_world);
 
     /* Next-event estimation: one point on one light (gc_sample_light). */

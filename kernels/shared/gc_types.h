@@ -164,6 +164,9 @@ GC_STRUCT(GcTriangleAttribs) {
 /* Set by gc_bsdf.h on its own copy of a rough-transmission material seen from inside; never
  * stored in a scene. */
 #define GC_MATF_SEEN_FROM_INSIDE 0x80000000u
+/* Set by gc_with_coat_normal on a hit's copy whose coat has its own normal (coat_normal); never
+ * stored in a scene. */
+#define GC_MATF_COAT_NORMAL 0x40000000u
 
 GC_STRUCT(GcMaterial) {
     float4 albedo;   /* rgb: diffuse reflectance / base color (linear); a: opacity */
@@ -189,6 +192,11 @@ GC_STRUCT(GcMaterial) {
     float absorption_g; /* per unit length and channel (0 without a volume) */
     float absorption_b;
     uint transmission_texture; /* KHR_materials_transmission transmissionTexture (R: factor) */
+    uint coat_normal_texture;  /* clearcoatNormalTexture: the coat's own tangent-space normal map */
+    float coat_normal_scale;   /* its scale (multiplies the map's xy, as normal_scale) */
+    uint pad0;
+    float4 coat_normal; /* on a hit's copy with GC_MATF_COAT_NORMAL (gc_with_coat_normal): xyz the
+                         * coat's unit normal in the shading frame (z: the shading normal); else 0 */
 } GC_STRUCT_END(GcMaterial)
 
 #define GC_TEXF_SRGB 1u          /* texels are sRGB-encoded colour */
@@ -375,10 +383,11 @@ static_assert(sizeof(GcTriangle4) == 176 && offsetof(GcTriangle4, prim) == 144);
 static_assert(sizeof(GcTriangleAttribs) == 112 && offsetof(GcTriangleAttribs, ng) == 48 &&
               offsetof(GcTriangleAttribs, uv01) == 64 && offsetof(GcTriangleAttribs, uv2_u) == 80 &&
               offsetof(GcTriangleAttribs, flags) == 92 && offsetof(GcTriangleAttribs, tangent) == 96);
-static_assert(sizeof(GcMaterial) == 176 && offsetof(GcMaterial, type) == 64 &&
+static_assert(sizeof(GcMaterial) == 192 && offsetof(GcMaterial, type) == 64 &&
               offsetof(GcMaterial, emission_texture) == 80 && offsetof(GcMaterial, coat) == 96 &&
               offsetof(GcMaterial, sheen) == 112 && offsetof(GcMaterial, coat_roughness_texture) == 128 &&
-              offsetof(GcMaterial, sheen_roughness_texture) == 144 && offsetof(GcMaterial, transmission_texture) == 160);
+              offsetof(GcMaterial, sheen_roughness_texture) == 144 && offsetof(GcMaterial, transmission_texture) == 160 &&
+              offsetof(GcMaterial, coat_normal_scale) == 168 && offsetof(GcMaterial, coat_normal) == 176);
 static_assert(sizeof(GcTexture) == 48 && offsetof(GcTexture, uv_u) == 16 && offsetof(GcTexture, uv_v) == 32);
 static_assert(sizeof(GcEmitter) == 64 && offsetof(GcEmitter, triangle) == 48 && offsetof(GcEmitter, cdf) == 60);
 static_assert(sizeof(GcPointLight) == 32 && sizeof(GcCamera) == 64);

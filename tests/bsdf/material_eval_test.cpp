@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "gc_alpha.h"
@@ -49,7 +50,8 @@ struct OneTriangle {
         m.emission = make_float4(0, 0, 0, 1.5f);
         m.pbr = make_float4(0.0f, 0.5f, 0.5f, 0.0f);
         m.albedo_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = GC_INVALID;
-        m.normal_scale = 1.0f;
+        m.coat_texture = m.coat_roughness_texture = m.coat_normal_texture = GC_INVALID;
+        m.normal_scale = m.coat_normal_scale = 1.0f;
         materials.push_back(m);
     }
 
@@ -175,6 +177,52 @@ TEST(MaterialEval, NormalMapTangentSpace)
     s.attribs[0].tangent.w = 1.0f;
     EXPECT_EQ(mapped(rgba(255, 128, 0)), n);
     for (const float3& v : {flat, tx, ty}) EXPECT_NEAR(glm::length(v), 1.0f, 1e-5f);
+}
+
+// clearcoatNormalTexture: the coat's normal is the map applied to the interpolated normal, in
+// the shading frame (the base's mapped normal as z), and only a coated material gets one.
+TEST(MaterialEval, CoatNormalIsTheCoatMapInTheShadingFrame)
+{
+    OneTriangle s;
+    const GcTriangleAttribs& a = s.attribs[0];
+    const float3 n = make_float3(0, 0, 1);
+    const float2 bary = make_float2(0.3f, 0.3f);
+    const float2 uv = make_float2(0.3f, 0.3f);
+    auto with_coat_normal = [&](const GcMaterial& m) {
+        const float3 ns = gc_shade_normal(s.attribs.data(), s.materials.data(), s.textures.data(), s.texel_data.data(),
+                                          nullptr, nullptr, nullptr, nullptr, nullptr, m, a, bary, n, uv);
+        const GcFrame frame = gc_frame_from_normal(ns);
+        const GcMaterial out = gc_with_coat_normal(s.attribs.data(), s.materials.data(), s.textures.data(),
+                                                   s.texel_data.data(), nullptr, nullptr, nullptr, nullptr, nullptr, m,
+                                                   a, bary, n, uv, frame);
+        return std::make_pair(out, frame);
+    };
+    GcMaterial m = s.materials[0];
+    m.coat_normal_texture = s.add_texture(rgba(218, 128, 218), false);  // tilted towards +x (dP/du)
+    EXPECT_EQ(with_coat_normal(m).first.flags & GC_MATF_COAT_NORMAL, 0u) << "no coat, no coat normal";
+    m.flags = GC_MATF_CLEARCOAT;
+    m.coat = make_float4(1.0f, 0.1f, 0.0f, 1.0f);
+    const auto [coated, frame] = with_coat_normal(m);
+    ASSERT_NE(coated.flags & GC_MATF_COAT_NORMAL, 0u);
+    const float3 world = gc_frame_to_world(frame, GC_XYZ(coated.coat_normal));
+    const float3 want = gc_shade_normal(s.attribs.data(), s.materials.data(), s.textures.data(), s.texel_data.data(),
+                                        nullptr, nullptr, nullptr, nullptr, nullptr,
+                                        [&] { GcMaterial b = m; b.normal_texture = m.coat_normal_texture; return b; }(),
+                                        a, bary, n, uv);
+    std::printf("[coat normal] untilted base: local (%.3f %.3f %.3f), world (%.3f %.3f %.3f), the map alone (%.3f %.3f "
+                "%.3f)\n", coated.coat_normal.x, coated.coat_normal.y, coated.coat_normal.z, world.x, world.y, world.z,
+                want.x, want.y, want.z);
+    EXPECT_GT(world.x, 0.4f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(world[c], want[c], 1e-5f);
+    // Under a base normal map tilted the other way, the coat keeps its own direction in the
+    // world; in the shading frame it then leans further from z.
+    m.normal_texture = s.add_texture(rgba(60, 128, 230), false);
+    const auto [both, base_frame] = with_coat_normal(m);
+    const float3 world_both = gc_frame_to_world(base_frame, GC_XYZ(both.coat_normal));
+    std::printf("[coat normal] under a base tilted to -x: local z %.3f (untilted base %.3f)\n", both.coat_normal.z,
+                coated.coat_normal.z);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(world_both[c], want[c], 1e-5f);
+    EXPECT_LT(both.coat_normal.z, coated.coat_normal.z);
 }
 
 TEST(MaterialEval, MetallicRoughnessAndEmissionTextures)

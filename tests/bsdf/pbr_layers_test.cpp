@@ -34,6 +34,16 @@ using test_pbr::grey;
 using test_pbr::pbr;
 using test_pbr::sheened;
 
+// A coat with its own normal (clearcoatNormalTexture), tilted by `degrees` towards +x in the
+// shading frame, as gc_with_coat_normal leaves a hit's material.
+GcMaterial tilted_coat(GcMaterial m, float degrees)
+{
+    const float a = degrees * float(kPi) / 180.0f;
+    m.coat_normal = make_float4(std::sin(a), 0.0f, std::cos(a), 0.0f);
+    m.flags |= GC_MATF_COAT_NORMAL;
+    return m;
+}
+
 GcMaterial with_specular(GcMaterial m, float factor, float3 colour)
 {
     m.flags |= GC_MATF_SPECULAR;
@@ -57,6 +67,10 @@ std::vector<Case> layer_cases()
         {"coat 1 r.25 over black wo=75", coated(pbr(grey(0.0f), 0.0f, 0.8f), 1.0f, 0.25f), dir_deg(75)},
         {"coat .8 r.4 over trans.7 wo=20", coated(pbr(grey(0.8f), 0.0f, 0.4f, 0.7f), 0.8f, 0.4f), dir_deg(20)},
         {"coat 1 r.3 back side wo=130", coated(pbr(make_float3(0.2f, 0.4f, 0.9f), 0.3f, 0.5f), 1.0f, 0.3f), dir_deg(130)},
+        {"coat 1 r.25 tilted 25 over red wo=40",
+         tilted_coat(coated(pbr(make_float3(0.5f, 0.02f, 0.01f), 0.0f, 0.5f), 1.0f, 0.25f), 25.0f), dir_deg(40)},
+        {"coat .7 r.3 tilted 35 over trans.6 back wo=150",
+         tilted_coat(coated(pbr(grey(0.8f), 0.0f, 0.4f, 0.6f), 0.7f, 0.3f), 35.0f), dir_deg(150)},
         {"specular .5 (1 .2 .2) r.3 wo=40", with_specular(pbr(grey(0.5f), 0.0f, 0.3f), 0.5f, make_float3(1.0f, 0.2f, 0.2f)),
          dir_deg(40)},
         {"specular 1 (2 2 2) + coat wo=50",
@@ -75,7 +89,8 @@ std::vector<Case> layer_cases()
 double delta_probability(const GcMaterial& m, float3 wo)
 {
     const float cos_o = std::fabs(wo.z);
-    const float2 layers = gc_pbr_layer_probs(m, base_of(m), cos_o);
+    const float2 layers = gc_pbr_layer_probs(gc_pbr_from_side(m, gc_bsdf_side(wo)), base_of(m),
+                                             gc_bsdf_flip(wo, gc_bsdf_side(wo)));
     return (1.0 - layers.x) * (1.0 - layers.y) * gc_pbr_lobe_probs(m, base_of(m), cos_o).z;
 }
 

@@ -22,7 +22,8 @@ inline GcMaterial pbr(float3 base, float metallic, float roughness, float transm
     m.coat = make_float4(0.0f, 0.0f, 0.0f, 1.0f);
     m.albedo_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = GC_INVALID;
     m.coat_texture = m.coat_roughness_texture = m.specular_texture = m.specular_color_texture = GC_INVALID;
-    m.sheen_color_texture = m.sheen_roughness_texture = m.transmission_texture = GC_INVALID;
+    m.sheen_color_texture = m.sheen_roughness_texture = m.transmission_texture = m.coat_normal_texture = GC_INVALID;
+    m.coat_normal_scale = 1.0f;
     return m;
 }
 

@@ -4,6 +4,8 @@
 // and a texture that turns transmission down over part of the cube changes those pixels.
 // Sheen (whose lobe the host tests check, tests/bsdf/pbr_layers_test.cpp): the sheened
 // spheres' program builds and runs, brightens them at grazing angles and stays finite.
+// clearcoatNormalTexture on Khronos' ClearCoatTest: the coat normal maps change the coated
+// spheres, and nothing but the coat (with the coat factor at 0 the maps change no bit).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -80,6 +82,61 @@ TEST_F(MaterialLayersRenderTest, OnesKeepTheBitsAndZerosChangeThePixels)
     for (std::size_t i = 0; i < plain.size(); ++i) changed += plain[i] != half[i] ? 1 : 0;
     std::printf("pixels changed by a texture of zeros on half the cube: %zu of %zu\n", changed, plain.size());
     EXPECT_GT(changed, plain.size() / 20);
+}
+
+// The image of `s` from +z, framed on its triangles, under a white sky.
+std::vector<glm::vec4> framed_image(const cl::Context& context, const Scene& s, std::uint32_t spp)
+{
+    RenderSettings settings;
+    settings.width = 48;
+    settings.height = 48;
+    settings.env_radiance = glm::vec3(1.0f);
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const Point3& p : s.positions) {
+        lo = glm::min(lo, glm::vec3(p.x, p.y, p.z));
+        hi = glm::max(hi, glm::vec3(p.x, p.y, p.z));
+    }
+    Camera camera;
+    camera.look_at = Point3(0.5f * (lo + hi));
+    camera.look_from = Point3(0.5f * (lo + hi) + glm::vec3(0.0f, 0.0f, 1.2f * glm::length(hi - lo)));
+    camera.vfov_degrees = 40.0f;
+    Renderer renderer(context, s, build_bvh(s), camera, settings);
+    renderer.render(0, spp);
+    return renderer.sums(false).sums;
+}
+
+TEST_F(MaterialLayersRenderTest, CoatNormalMapsChangeTheCoatAlone)
+{
+    const Scene loaded = load_scene(std::filesystem::path(GC_TEST_SOURCE_DIR) /
+                                    "tests/data/scenes/ClearCoatTest/ClearCoatTest.gltf");
+    auto without_coat_normals = [](Scene s) {
+        for (Material& m : s.materials) m.layers.clearcoat_normal_texture = TextureRef{};
+        return s;
+    };
+    auto without_coat = [](Scene s) {
+        for (Material& m : s.materials)
+            if (m.layers.clearcoat_normal_texture.texture >= 0) m.layers.clearcoat = 0.0f;
+        return s;
+    };
+    int mapped = 0;
+    for (const Material& m : loaded.materials) mapped += m.layers.clearcoat_normal_texture.texture >= 0 ? 1 : 0;
+    ASSERT_EQ(mapped, 2);
+    const std::vector<glm::vec4> with = framed_image(*context, loaded, 8);
+    const std::vector<glm::vec4> without = framed_image(*context, without_coat_normals(loaded), 8);
+    std::size_t changed = 0, non_finite = 0;
+    for (std::size_t i = 0; i < with.size(); ++i) {
+        changed += with[i] != without[i] ? 1 : 0;
+        non_finite += std::isfinite(with[i].x + with[i].y + with[i].z) ? 0 : 1;
+    }
+    const std::vector<glm::vec4> uncoated = framed_image(*context, without_coat(loaded), 8);
+    const std::vector<glm::vec4> uncoated_unmapped = framed_image(*context, without_coat_normals(without_coat(loaded)), 8);
+    const bool same = std::memcmp(uncoated.data(), uncoated_unmapped.data(), uncoated.size() * sizeof(glm::vec4)) == 0;
+    std::printf("coat normal maps on %d materials change %zu of %zu pixels (%zu non-finite); with those coats at 0 "
+                "the maps change %s\n",
+                mapped, changed, with.size(), non_finite, same ? "no bit" : "BITS");
+    EXPECT_GT(changed, with.size() / 50);
+    EXPECT_EQ(non_finite, 0u);
+    EXPECT_TRUE(same);
 }
 
 // A white sheen on every PBR sphere of tests/data/scenes/material-layers under a white sky:
