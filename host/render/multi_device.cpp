@@ -182,6 +182,293 @@ std::uint32_t ask_size(bool is_gpu, std::uint32_t chunks_left, std::uint32_t dev
     return std::clamp(share / 4, 1u, 8u);
 }
 
+namespace {
+
+// What every device of one render_chunks call renders, and for whom.
+struct FrameJob {
+    const PreparedScene& prepared;
+    const RenderSettings& settings;
+    const RenderSetup& setup;
+    const ChunkPlan& plan;
+    const FrameControl& control;
+    const ChunkSink& sink;
+    const ChunkRounds& rounds;
+};
+
+// Tells control.on_progress the samples of complete chunks plus every device's part-done one.
+void report_progress(const FrameJob& job, Shared& shared)
+{
+    if (!job.control.on_progress) return;
+    std::uint64_t done = shared.complete_samples.load();
+    for (const auto& p : shared.progress) done += p.load();
+    std::lock_guard lock(shared.progress_mutex);
+    job.control.on_progress(std::min<std::uint64_t>(done, job.plan.end_sample - job.plan.first_sample));
+}
+
+// A chunk a device took: its number, whether it backs up another device's run of it, and
+// the pixels of its round (null: every pixel).
+struct Claim {
+    std::uint32_t n = 0;
+    bool backup = false;
+    std::shared_ptr<const std::vector<std::uint32_t>> pixels;
+};
+
+// How rendering a claimed chunk ended.
+struct ChunkEnd {
+    std::uint32_t done = 0;  // samples rendered
+    bool abandoned = false;  // another device delivered it first
+    bool stopped = false;    // the frame stopped (cancelled, out of time) before it was complete
+    bool left = false;       // this device left the frame (adds_too_little)
+};
+
+// One device's thread: a session on the device, then chunks claimed from the shared queue,
+// rendered and handed to the sink until the plan is done or the frame stops.
+class DeviceWorker {
+public:
+    DeviceWorker(std::size_t me, const cl::DeviceInfo& device, const FrameJob& job, Shared& shared,
+                 DeviceReport& report)
+        : m_me(me), m_device(device), m_job(job), m_shared(shared), m_report(report)
+    {
+    }
+
+    // Runs the device's part of the frame; a failure leaves the frame (its chunks go back to
+    // the queue) and is returned, also recorded in the report.
+    std::exception_ptr run() noexcept
+    {
+        m_report.name = m_device.device_name + " (" + m_device.platform_name + ")";
+        m_report.is_gpu = m_device.is_gpu;
+        try {
+            const auto setup_start = Clock::now();
+            Session session(m_device, m_job.prepared, m_job.settings, m_job.setup);
+            Renderer& renderer = session.renderer();
+            m_with_squares = m_job.control.with_squares || m_job.rounds.active();
+            ChunkHandoff handoff(session.context(), renderer, m_with_squares);
+            m_report.setup_seconds = seconds_between(setup_start, Clock::now());
+            {
+                std::lock_guard lock(m_shared.mutex);
+                if (!m_shared.start) m_shared.start = Clock::now();
+                m_start = *m_shared.start;
+            }
+            render_until_done(renderer, handoff);
+            handoff.wait();
+            return nullptr;
+        } catch (...) {
+            std::exception_ptr error = std::current_exception();
+            try {
+                std::rethrow_exception(error);
+            } catch (const std::exception& e) {
+                m_report.failure = e.what();
+            } catch (...) {
+                m_report.failure = "unknown error";
+            }
+            std::lock_guard lock(m_shared.mutex);
+            leave_frame(m_shared, m_me, m_mine);
+            return error;
+        }
+    }
+
+private:
+    double elapsed() const { return seconds_between(m_start, Clock::now()); }
+
+    void render_until_done(Renderer& renderer, ChunkHandoff& handoff)
+    {
+        while (const std::optional<Claim> claim = next_claim()) {
+            const auto chunk_start = Clock::now();
+            m_shared.chunk_started[m_me] = seconds_between(m_start, chunk_start);
+            const ChunkEnd end = render_chunk(renderer, *claim);
+            m_report.busy_seconds += seconds_between(chunk_start, Clock::now());
+            m_report.samples += end.done;
+            if (end.left) return;
+            finish_chunk(renderer, handoff, *claim, end);
+            if (end.stopped) return;
+        }
+    }
+
+    // The next chunk this device renders, or none once the plan is done or the frame stops:
+    // its own reserved chunks first (a GPU reserves several at a time), then one another
+    // device reserved and has not started, then a backup of a running chunk its holder will
+    // finish later than this device could; else it waits for a change.
+    std::optional<Claim> next_claim()
+    {
+        std::unique_lock lock(m_shared.mutex);
+        for (;;) {
+            if (m_shared.stop) return std::nullopt;
+            auto& own = m_shared.reserved[m_me];
+            if (own.empty() && !m_shared.todo.empty()) {
+                const std::uint32_t want = ask_size(m_device.is_gpu, std::uint32_t(m_shared.todo.size()),
+                                                    std::uint32_t(m_shared.live));
+                for (std::uint32_t i = 0; i < want && !m_shared.todo.empty(); ++i) {
+                    own.push_back(m_shared.todo.front());
+                    m_shared.todo.pop_front();
+                }
+            }
+            if (own.empty()) {
+                for (auto& other : m_shared.reserved)
+                    if (other.size() > 0 && &other != &own) {
+                        own.push_back(other.back());
+                        other.pop_back();
+                        break;
+                    }
+            }
+            std::optional<Claim> claim;
+            if (!own.empty()) {
+                claim = Claim{own.front(), false, nullptr};
+                own.pop_front();
+            } else if (const std::optional<std::uint32_t> pick = backup_pick()) {
+                claim = Claim{*pick, true, nullptr};
+            }
+            if (claim) {
+                m_shared.running[claim->n].insert(m_me);
+                m_mine.push_back(claim->n);
+                claim->pixels = m_shared.pixels;
+                return claim;
+            }
+            if (m_shared.running.empty() && m_shared.todo.empty() && !m_shared.round_pending()) {
+                bool any_reserved = false;
+                for (const auto& r : m_shared.reserved) any_reserved = any_reserved || !r.empty();
+                if (!any_reserved) return std::nullopt;  // the plan is done
+            }
+            m_shared.changed.wait_for(lock, std::chrono::milliseconds(20));
+        }
+    }
+
+    // The running chunk (held by one other device) whose backup gains most (backup_gain), if
+    // any gains (under shared.mutex).
+    std::optional<std::uint32_t> backup_pick() const
+    {
+        const double mine_spp = m_shared.seconds_per_sample[m_me].load();
+        double best_gain = 0.0;
+        std::optional<std::uint32_t> pick;
+        for (const auto& [chunk, holders] : m_shared.running) {
+            if (holders.size() != 1 || holders.count(m_me)) continue;
+            const std::size_t holder = *holders.begin();
+            RunningChunk running;
+            running.count = m_job.plan.chunk(chunk).count;
+            running.done = m_shared.progress[holder].load();
+            running.elapsed_seconds = elapsed() - m_shared.chunk_started[holder].load();
+            running.holder_seconds_per_sample = m_shared.seconds_per_sample[holder].load();
+            const double gain = backup_gain(mine_spp, running);
+            if (gain > best_gain) {
+                best_gain = gain;
+                pick = chunk;
+            }
+        }
+        return pick;
+    }
+
+    // Renders the claimed chunk pass by pass until it is complete, another device delivers
+    // it, the frame stops, or this device leaves the frame for adding too little.
+    ChunkEnd render_chunk(Renderer& renderer, const Claim& claim)
+    {
+        const ChunkRange range = m_job.plan.chunk(claim.n);
+        const FrameControl& control = m_job.control;
+        const bool limited = control.time_limit_seconds > 0.0;
+        if (claim.pixels != m_selected) {
+            if (claim.pixels) renderer.select_pixels(*claim.pixels);
+            else renderer.select_all_pixels();
+            m_selected = claim.pixels;
+        }
+        renderer.clear(range.first);
+        ChunkEnd end;
+        while (end.done < range.count) {
+            if (m_shared.finished[claim.n].load() || m_shared.stop.load()) {
+                end.abandoned = m_shared.finished[claim.n].load();
+                end.stopped = !end.abandoned;
+                break;
+            }
+            std::uint32_t wanted = range.count - end.done;
+            if (limited)
+                wanted = samples_before_deadline(control.time_limit_seconds - elapsed(), renderer.seconds_per_sample(),
+                                                 wanted);
+            end.done += renderer.render_samples(wanted);
+            m_shared.progress[m_me] = end.done;
+            report_progress(m_job, m_shared);
+            // Rates from the second pass on: a first pass carries one-time costs (a driver's
+            // first launch), which must not make a fast device look slow.
+            if (++m_passes >= 2 && renderer.seconds_per_sample() > 0.0)
+                m_shared.pass_rate[m_me] = 1.0 / renderer.seconds_per_sample();
+            if (adds_too_little(m_shared.pass_rate[m_me].load(), m_shared.others_rate(m_me))) {
+                m_report.left_slow = true;
+                end.left = true;
+                std::lock_guard lock(m_shared.mutex);
+                leave_frame(m_shared, m_me, m_mine);
+                return end;
+            }
+            const bool cancel = control.cancelled && control.cancelled();
+            const bool late = limited && elapsed() >= control.time_limit_seconds && end.done < range.count;
+            if (cancel || late) {
+                std::lock_guard lock(m_shared.mutex);
+                if (cancel) m_shared.cancelled = true;
+                if (late && !cancel) m_shared.timed_out = true;
+                m_shared.stop = true;
+                m_shared.changed.notify_all();
+                end.stopped = end.done < range.count;
+                if (end.stopped) break;
+            }
+        }
+        return end;
+    }
+
+    // Releases the chunk; delivers it to the sink if it is complete and first, or its samples
+    // as a truncated chunk if the frame stopped part-way.
+    void finish_chunk(Renderer& renderer, ChunkHandoff& handoff, const Claim& claim, const ChunkEnd& end)
+    {
+        const ChunkRange range = m_job.plan.chunk(claim.n);
+        if (end.done > 0 && m_report.busy_seconds > 0)
+            m_shared.seconds_per_sample[m_me] = m_report.busy_seconds / double(m_report.samples);
+        m_shared.progress[m_me] = 0;
+        bool deliver = false;
+        bool truncated = false;
+        {
+            std::lock_guard lock(m_shared.mutex);
+            m_shared.running[claim.n].erase(m_me);
+            if (m_shared.running[claim.n].empty()) m_shared.running.erase(claim.n);
+            m_mine.erase(std::find(m_mine.begin(), m_mine.end(), claim.n));
+            if (!end.abandoned && end.done == range.count && !m_shared.finished[claim.n]) {
+                m_shared.finished[claim.n] = true;
+                ++m_shared.finished_count;
+                deliver = true;
+            } else if (end.stopped && end.done > 0 && !m_shared.finished[claim.n]) {
+                truncated = true;
+            }
+            m_shared.changed.notify_all();
+        }
+        if (deliver) {
+            ++m_report.chunks;
+            if (claim.backup) ++m_report.backups;
+            m_report.finished_at = seconds_between(m_start, Clock::now());
+            m_shared.complete_samples += range.count;
+            Shared& shared = m_shared;
+            const FrameJob& job = m_job;
+            handoff.hand_off(renderer, [&shared, &job, range](FilmSums&& sums) {
+                std::lock_guard lock(shared.sink_mutex);
+                job.sink(range, std::move(sums), true);
+                ++shared.sunk_count;
+                if (job.rounds.active()) start_next_round_if_due(shared);
+            });
+        } else if (truncated) {
+            ChunkRange cut = range;
+            cut.count = end.done;
+            FilmSums sums = renderer.sums(m_with_squares);
+            std::lock_guard lock(m_shared.sink_mutex);
+            m_job.sink(cut, std::move(sums), false);
+        }
+    }
+
+    const std::size_t m_me;
+    const cl::DeviceInfo& m_device;
+    const FrameJob& m_job;
+    Shared& m_shared;
+    DeviceReport& m_report;
+    std::vector<std::uint32_t> m_mine;  // chunks this device holds in shared.running
+    Clock::time_point m_start;          // the frame's start (the first device ready)
+    bool m_with_squares = false;
+    std::shared_ptr<const std::vector<std::uint32_t>> m_selected;  // the renderer's pick of pixels
+    std::uint32_t m_passes = 0;
+};
+
+}  // namespace
+
 FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const PreparedScene& prepared,
                            const RenderSettings& settings, const RenderSetup& setup, const ChunkPlan& plan,
                            const FrameControl& control, const ChunkSink& sink, const ChunkRounds& rounds)
@@ -193,220 +480,12 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
     outcome.devices.resize(devices.size());
     std::vector<std::exception_ptr> errors(devices.size());
     const auto called = Clock::now();
-
-    const auto report_progress = [&] {
-        if (!control.on_progress) return;
-        std::uint64_t done = shared.complete_samples.load();
-        for (const auto& p : shared.progress) done += p.load();
-        std::lock_guard lock(shared.progress_mutex);
-        control.on_progress(std::min<std::uint64_t>(done, plan.end_sample - plan.first_sample));
-    };
-
-    const auto worker = [&](std::size_t me) {
-        const cl::DeviceInfo& device = devices[me];
-        DeviceReport& report = outcome.devices[me];
-        report.name = device.device_name + " (" + device.platform_name + ")";
-        report.is_gpu = device.is_gpu;
-        std::vector<std::uint32_t> mine;  // chunks this device holds in `running`
-        try {
-            const auto setup_start = Clock::now();
-            Session session(device, prepared, settings, setup);
-            Renderer& renderer = session.renderer();
-            const bool with_squares = control.with_squares || rounds.active();
-            ChunkHandoff handoff(session.context(), renderer, with_squares);
-            report.setup_seconds = seconds_between(setup_start, Clock::now());
-            Clock::time_point start;
-            {
-                std::lock_guard lock(shared.mutex);
-                if (!shared.start) shared.start = Clock::now();
-                start = *shared.start;
-            }
-            const auto elapsed = [&] { return seconds_between(start, Clock::now()); };
-            const bool limited = control.time_limit_seconds > 0.0;
-            std::shared_ptr<const std::vector<std::uint32_t>> selected;  // the renderer's pick
-            std::uint32_t passes = 0;
-
-            // Returns when the plan is done or the frame stops.
-            const auto render_chunks_until_done = [&] {
-                for (;;) {
-                    std::uint32_t n = 0;
-                    bool backup = false;
-                    std::shared_ptr<const std::vector<std::uint32_t>> pixels;
-                    {
-                        std::unique_lock lock(shared.mutex);
-                        for (;;) {
-                            if (shared.stop) return;
-                            auto& own = shared.reserved[me];
-                            if (own.empty() && !shared.todo.empty()) {
-                                const std::uint32_t want = ask_size(device.is_gpu, std::uint32_t(shared.todo.size()),
-                                                                    std::uint32_t(shared.live));
-                                for (std::uint32_t i = 0; i < want && !shared.todo.empty(); ++i) {
-                                    own.push_back(shared.todo.front());
-                                    shared.todo.pop_front();
-                                }
-                            }
-                            if (own.empty()) {
-                                // Take a chunk another device reserved and has not started.
-                                for (auto& other : shared.reserved)
-                                    if (other.size() > 0 && &other != &own) {
-                                        own.push_back(other.back());
-                                        other.pop_back();
-                                        break;
-                                    }
-                            }
-                            if (!own.empty()) {
-                                n = own.front();
-                                own.pop_front();
-                                break;
-                            }
-                            // Nothing left to take: back up the running chunk that its holder
-                            // will finish last, if this device expects to finish it sooner.
-                            const double mine_spp = shared.seconds_per_sample[me].load();
-                            double best_gain = 0.0;
-                            std::optional<std::uint32_t> pick;
-                            for (const auto& [chunk, holders] : shared.running) {
-                                if (holders.size() != 1 || holders.count(me)) continue;
-                                const std::size_t holder = *holders.begin();
-                                RunningChunk running;
-                                running.count = plan.chunk(chunk).count;
-                                running.done = shared.progress[holder].load();
-                                running.elapsed_seconds = elapsed() - shared.chunk_started[holder].load();
-                                running.holder_seconds_per_sample = shared.seconds_per_sample[holder].load();
-                                const double gain = backup_gain(mine_spp, running);
-                                if (gain > best_gain) {
-                                    best_gain = gain;
-                                    pick = chunk;
-                                }
-                            }
-                            if (pick) {
-                                n = *pick;
-                                backup = true;
-                                break;
-                            }
-                            if (shared.running.empty() && shared.todo.empty() && !shared.round_pending()) {
-                                bool any_reserved = false;
-                                for (const auto& r : shared.reserved) any_reserved = any_reserved || !r.empty();
-                                if (!any_reserved) return;  // the plan is done
-                            }
-                            shared.changed.wait_for(lock, std::chrono::milliseconds(20));
-                        }
-                        shared.running[n].insert(me);
-                        mine.push_back(n);
-                        pixels = shared.pixels;
-                    }
-
-                    const ChunkRange range = plan.chunk(n);
-                    const auto chunk_start = Clock::now();
-                    shared.chunk_started[me] = seconds_between(start, chunk_start);
-                    if (pixels != selected) {
-                        if (pixels) renderer.select_pixels(*pixels);
-                        else renderer.select_all_pixels();
-                        selected = pixels;
-                    }
-                    renderer.clear(range.first);
-                    std::uint32_t done = 0;
-                    bool abandoned = false;
-                    bool stopped = false;
-                    while (done < range.count) {
-                        if (shared.finished[n].load() || shared.stop.load()) {
-                            abandoned = shared.finished[n].load();
-                            stopped = !abandoned;
-                            break;
-                        }
-                        std::uint32_t wanted = range.count - done;
-                        if (limited)
-                            wanted = samples_before_deadline(control.time_limit_seconds - elapsed(),
-                                                             renderer.seconds_per_sample(), wanted);
-                        done += renderer.render_samples(wanted);
-                        shared.progress[me] = done;
-                        report_progress();
-                        // Rates from the second pass on: a first pass carries one-time costs (a
-                        // driver's first launch), which must not make a fast device look slow.
-                        if (++passes >= 2 && renderer.seconds_per_sample() > 0.0)
-                            shared.pass_rate[me] = 1.0 / renderer.seconds_per_sample();
-                        if (adds_too_little(shared.pass_rate[me].load(), shared.others_rate(me))) {
-                            report.busy_seconds += seconds_between(chunk_start, Clock::now());
-                            report.samples += done;
-                            report.left_slow = true;
-                            std::lock_guard lock(shared.mutex);
-                            leave_frame(shared, me, mine);
-                            return;
-                        }
-                        const bool cancel = control.cancelled && control.cancelled();
-                        const bool late = limited && elapsed() >= control.time_limit_seconds && done < range.count;
-                        if (cancel || late) {
-                            std::lock_guard lock(shared.mutex);
-                            if (cancel) shared.cancelled = true;
-                            if (late && !cancel) shared.timed_out = true;
-                            shared.stop = true;
-                            shared.changed.notify_all();
-                            stopped = done < range.count;
-                            if (stopped) break;
-                        }
-                    }
-                    const double chunk_seconds = seconds_between(chunk_start, Clock::now());
-                    report.busy_seconds += chunk_seconds;
-                    report.samples += done;
-                    if (done > 0 && report.busy_seconds > 0)
-                        shared.seconds_per_sample[me] = report.busy_seconds / double(report.samples);
-                    shared.progress[me] = 0;
-
-                    bool deliver = false;
-                    bool truncated = false;
-                    {
-                        std::lock_guard lock(shared.mutex);
-                        shared.running[n].erase(me);
-                        if (shared.running[n].empty()) shared.running.erase(n);
-                        mine.erase(std::find(mine.begin(), mine.end(), n));
-                        if (!abandoned && done == range.count && !shared.finished[n]) {
-                            shared.finished[n] = true;
-                            ++shared.finished_count;
-                            deliver = true;
-                        } else if (stopped && done > 0 && !shared.finished[n]) {
-                            truncated = true;
-                        }
-                        shared.changed.notify_all();
-                    }
-                    if (deliver) {
-                        ++report.chunks;
-                        if (backup) ++report.backups;
-                        report.finished_at = seconds_between(start, Clock::now());
-                        shared.complete_samples += range.count;
-                        handoff.hand_off(renderer, [&shared, &sink, &rounds, range](FilmSums&& sums) {
-                            std::lock_guard lock(shared.sink_mutex);
-                            sink(range, std::move(sums), true);
-                            ++shared.sunk_count;
-                            if (rounds.active()) start_next_round_if_due(shared);
-                        });
-                    } else if (truncated) {
-                        ChunkRange cut = range;
-                        cut.count = done;
-                        FilmSums sums = renderer.sums(with_squares);
-                        std::lock_guard lock(shared.sink_mutex);
-                        sink(cut, std::move(sums), false);
-                    }
-                    if (stopped) return;
-                }
-            };
-            render_chunks_until_done();
-            handoff.wait();
-        } catch (...) {
-            errors[me] = std::current_exception();
-            try {
-                std::rethrow_exception(errors[me]);
-            } catch (const std::exception& e) {
-                report.failure = e.what();
-            } catch (...) {
-                report.failure = "unknown error";
-            }
-            std::lock_guard lock(shared.mutex);
-            leave_frame(shared, me, mine);
-        }
-    };
+    const FrameJob job{prepared, settings, setup, plan, control, sink, rounds};
 
     std::vector<std::thread> threads;
     threads.reserve(devices.size());
-    for (std::size_t i = 0; i < devices.size(); ++i) threads.emplace_back(worker, i);
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        threads.emplace_back([&, i] { errors[i] = DeviceWorker(i, devices[i], job, shared, outcome.devices[i]).run(); });
     for (auto& t : threads) t.join();
 
     if (shared.round_error) std::rethrow_exception(shared.round_error);
