@@ -84,7 +84,7 @@ TEST_F(MaterialLayersRenderTest, OnesKeepTheBitsAndZerosChangeThePixels)
     EXPECT_GT(changed, plain.size() / 20);
 }
 
-// The image of `s` from +z, framed on its triangles, under a white sky.
+// The image of `s` from +z, back by 1.2 times its extent, under a white sky.
 std::vector<glm::vec4> framed_image(const cl::Context& context, const Scene& s, std::uint32_t spp)
 {
     RenderSettings settings;
@@ -157,25 +157,7 @@ TEST_F(MaterialLayersRenderTest, SheenRendersOnTheDevice)
             ++layered;
         }
     ASSERT_GT(layered, 0);
-    const auto image = [&](const Scene& s) {
-        RenderSettings settings;
-        settings.width = 40;
-        settings.height = 32;
-        settings.env_radiance = glm::vec3(1.0f);
-        // Framing the spheres: from +z, back by 1.2 times their extent.
-        glm::vec3 lo(1e30f), hi(-1e30f);
-        for (const Point3& p : s.positions) {
-            lo = glm::min(lo, glm::vec3(p.x, p.y, p.z));
-            hi = glm::max(hi, glm::vec3(p.x, p.y, p.z));
-        }
-        Camera camera;
-        camera.look_at = Point3(0.5f * (lo + hi));
-        camera.look_from = Point3(0.5f * (lo + hi) + glm::vec3(0.0f, 0.0f, 1.2f * glm::length(hi - lo)));
-        camera.vfov_degrees = 40.0f;
-        Renderer renderer(*context, s, build_bvh(s), camera, settings);
-        renderer.render(0, 16);
-        return renderer.sums(false).sums;
-    };
+    const auto image = [&](const Scene& s) { return framed_image(*context, s, 16); };
     const std::vector<glm::vec4> without = image(plain);
     const std::vector<glm::vec4> with = image(sheened);
     Scene red = sheened;
