@@ -33,28 +33,12 @@
 #include "gc_path_vertex.h"
 #include "gc_camera.h"
 #include "gc_rng.h"
+#include "gc_scene_trace.h"
 
-/* An instanced scene (-D GC_SCENE_INSTANCED): the instance buffers come before the scene's,
- * every ray goes through the two-level BVH one by one (no camera packets), and hits are shaded
- * in world space (gc_path_instances.h). A flat scene's program is unchanged. */
-#if defined(GC_SCENE_INSTANCED)
-#include "gc_path_instances.h"
-#define GC_INSTANCES_FIRST_PARAMS GC_INSTANCE_PARAMS,
-#define GC_INSTANCES_FIRST_ARGS GC_INSTANCE_ARGS,
-#define GC_PATH_CLOSEST(ray) gc_trace_instances(GC_INSTANCE_ARGS, GC_BVH_ARGS, ray, false)
-#define GC_PATH_SHADE(path, ray, hit) gc_shade_instance_vertex(GC_SHADE_ARGS, gc_instances, params, path, ray, hit)
-#define GC_PATH_OCCLUDED(ray) (gc_trace_instances(GC_INSTANCE_ARGS, GC_BVH_ARGS, ray, true).instance != GC_INVALID)
-#define GC_PATH_HIT GcInstanceHit
-#else
-#define GC_INSTANCES_FIRST_PARAMS
-#define GC_INSTANCES_FIRST_ARGS
-#define GC_PATH_CLOSEST(ray) gc_trace_closest(GC_BVH_ARGS, ray)
-#define GC_PATH_SHADE(path, ray, hit) gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit)
-#define GC_PATH_OCCLUDED(ray) gc_trace_any(GC_BVH_ARGS, ray)
-#define GC_PATH_HIT GcHit
-#if defined(GC_HAVE_PACKET8)
+/* Camera rays go in packets on the BVH8 of a flat scene; an instanced scene's (-D
+ * GC_SCENE_INSTANCED, gc_scene_trace.h) every ray goes through the two-level BVH alone. */
+#if defined(GC_HAVE_PACKET8) && !defined(GC_SCENE_INSTANCED)
 #define GC_PATH_CAMERA_PACKETS
-#endif
 #endif
 
 /* One work-item's pixels, out of line on CPUs (GC_ITEM_BODY, gc_platform.h). Inlined, PoCL
@@ -95,7 +79,7 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
         }
         /* The group's camera rays, which leave through one pixel or a few neighbours, as one
          * packet (gc_packet8.h) when there are enough of them; else each path traces its own. */
-        GC_PATH_HIT cam_hit[8];
+        GcSceneHit cam_hit[8];
         bool cam_traced = false;
 #if defined(GC_PATH_CAMERA_PACKETS)
         if (lanes >= GC_PACKET_MIN_LANES) {
@@ -123,10 +107,13 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
             GcPathState path = gc_path_start(pixel, params.sample_index + (p0 + k) % samples);
             /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
             for (bool first_segment = true;; first_segment = false) {
-                const GC_PATH_HIT hit = first_segment && cam_traced ? cam_hit[k] : GC_PATH_CLOSEST(ray);
-                const GcVertexResult res = GC_PATH_SHADE(path, ray, hit);
+                const GcSceneHit hit = first_segment && cam_traced ? cam_hit[k] : gc_scene_closest(ray);
+                const GcVertexResult res =
+                    gc_scene_hit(hit).prim == GC_INVALID
+                        ? gc_shade_escape(GC_SHADE_ARGS, params, path, ray)
+                        : gc_shade_surface(GC_SHADE_ARGS, params, path, ray, gc_scene_hit(hit), gc_scene_attribs(hit));
                 path = res.path;
-                if ((res.flags & GC_VERTEX_SHADOW) != 0u && !GC_PATH_OCCLUDED(res.shadow.ray))
+                if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_scene_occluded(res.shadow.ray))
                     path.radiance += res.shadow.contribution;
                 if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
                 ray = res.next;

@@ -365,8 +365,8 @@ Consistency (same image on every device):
 Scene:
       --gltf-scene N       which scene of a glTF file (default: the file's default scene)
       --flatten-instances  copy a glTF's reused meshes into one flat scene (by default the
-                           path integrator keeps each mesh once on the device, drawn by
-                           instances through a two-level BVH)
+                           path and Whitted integrators keep each mesh once on the device,
+                           drawn by instances through a two-level BVH)
 Other:
   -q, --quiet              no progress bar (it is also off when stderr is not a terminal)
   -v, --verbose            more detail (kernel build and cache, timings)

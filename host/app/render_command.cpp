@@ -20,6 +20,7 @@
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
 #include "host/render/denoise_guides.h"
+#include "host/render/integrator.h"
 #include "host/render/session.h"
 #include "host/util/log.h"
 #include "host/util/progress.h"
@@ -139,8 +140,8 @@ ExitCode run_render(const Options& options)
     }
 
     SceneRequest request = scene_request(options);
-    // Only the path integrator traces instances; a Session flattens them for the AOV layers.
-    request.keep_instances = settings.integrator == IntegratorKind::Path && !options.flatten_instances;
+    // A Session flattens instances for the integrators that do not trace them (the AOV layers).
+    request.keep_instances = keeps_instances(settings.integrator) && !options.flatten_instances;
     PreparedScene prepared = prepare_scene(request);
     if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
 

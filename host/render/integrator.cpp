@@ -17,6 +17,11 @@ bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form)
     return !device.is_gpu;
 }
 
+bool keeps_instances(IntegratorKind integrator)
+{
+    return integrator == IntegratorKind::Path || integrator == IntegratorKind::Whitted;
+}
+
 std::string scene_program_options(const DeviceScene& scene)
 {
     return program_options(scene.bvh.layout()) + " " + program_options(scene.features) +
@@ -27,12 +32,13 @@ std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const De
                                             const RenderSettings& settings, const RenderSetup& setup,
                                             std::uint32_t batch_pixels)
 {
-    // Only the path integrator's megakernel traces the two-level BVH; a Session uploads an
-    // instanced scene flattened for the others (Session, prepare_scene).
-    if (scene.instanced() && settings.integrator != IntegratorKind::Path)
+    // The path integrator's megakernel and Whitted trace the two-level BVH; a Session uploads
+    // an instanced scene flattened for the AOVs (keeps_instances).
+    if (scene.instanced() && !keeps_instances(settings.integrator))
         throw UsageError(std::string("the ") + integrator_name(settings.integrator) +
                          " integrator does not trace instanced scenes; upload the scene flattened");
-    if (scene.instanced()) return std::make_unique<MegakernelPathIntegrator>(context, scene, setup);
+    if (scene.instanced() && settings.integrator == IntegratorKind::Path)
+        return std::make_unique<MegakernelPathIntegrator>(context, scene, setup);
     switch (settings.integrator) {
     case IntegratorKind::Aov: return std::make_unique<AovIntegrator>(context, scene, setup);
     case IntegratorKind::Whitted: return std::make_unique<WhittedIntegrator>(context, scene, setup);

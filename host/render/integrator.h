@@ -70,6 +70,10 @@ std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const De
 // on one device.
 bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form = PathKernelForm::Auto);
 
+// Whether the integrator traces instanced scenes (DeviceScene::upload_instanced): the path
+// integrator (its megakernel form, on every device) and Whitted; the AOVs take them flattened.
+bool keeps_instances(IntegratorKind integrator);
+
 // The compile options every program of `scene` is built with: its BVH layout and features.
 std::string scene_program_options(const DeviceScene& scene);
 

@@ -39,13 +39,14 @@
  * estimate stays unbiased, only correlated.
  *
  * Scene buffers come in as the scene-buffer group scene, GC_SCENE_PARAMS (gc_scene_buffers.h;
- * GLSL reads the SSBOs of kernels/vk/scene_bindings.glsl). Its traversal skips alpha-MASK
- * cut-outs, as the path kernels' does (gc_traverse.h).
+ * GLSL reads the SSBOs of kernels/vk/scene_bindings.glsl), after the instance buffers of an
+ * instanced scene (gc_scene_trace.h). Its traversal skips alpha-MASK cut-outs, as the path
+ * kernels' does (gc_traverse.h).
  */
 #ifndef GC_WHITTED_TREE_H
 #define GC_WHITTED_TREE_H
 
-#include "gc_traverse.h"
+#include "gc_scene_trace.h"
 #include "gc_camera.h"
 #include "gc_lights.h"
 #include "gc_material_eval.h"
@@ -61,16 +62,16 @@ GC_NAMESPACE_BEGIN
 
 /* True when nothing blocks the segment from `origin` to `target` (both already offset off
  * their surfaces). */
-GC_FUNC bool gc_whitted_unoccluded(GC_BVH_PARAMS, float3 origin, float3 target)
+GC_FUNC bool gc_whitted_unoccluded(GC_INSTANCES_FIRST_PARAMS GC_BVH_PARAMS, float3 origin, float3 target)
 {
     const float3 d = target - origin;
     const float len = gc_length(d);
     if (!(len > 0.0f)) return true;
-    return !gc_trace_any(GC_BVH_ARGS, gc_make_ray(origin, d / len, 0.0f, len));
+    return !gc_scene_occluded(gc_make_ray(origin, d / len, 0.0f, len));
 }
 
 /* The radiance camera sample params.sample_index of `pixel` brings back. */
-GC_FUNC float3 gc_whitted_sample(GC_SCENE_PARAMS, GcRenderParams params, uint pixel)
+GC_FUNC float3 gc_whitted_sample(GC_INSTANCES_FIRST_PARAMS GC_SCENE_PARAMS, GcRenderParams params, uint pixel)
 {
     const float3 env = GC_XYZ(params.env_radiance);
 
@@ -92,12 +93,13 @@ GC_FUNC float3 gc_whitted_sample(GC_SCENE_PARAMS, GcRenderParams params, uint pi
         const float3 weight = stack_weight[sp];
         const uint depth = stack_depth[sp];
 
-        const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
+        const GcSceneHit closest = gc_scene_closest(ray);
+        const GcHit hit = gc_scene_hit(closest);
         if (hit.prim == GC_INVALID) {
             L += weight * env;
             continue;
         }
-        const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
+        const GcSurface s = gc_surface_at(gc_scene_attribs(closest), ray, hit);
         const GcMaterial m = GC_MATERIAL(s.material);
         const float3 wo = -gc_normalize(GC_XYZ(ray.dir_tmax));
 
@@ -119,7 +121,7 @@ GC_FUNC float3 gc_whitted_sample(GC_SCENE_PARAMS, GcRenderParams params, uint pi
                 const float3 brdf_cos = gc_whitted_brdf_cos(m, albedo, s.ns, s.ng, wo, wi);
                 const float3 c = gc_whitted_point_light(brdf_cos, GC_XYZ(light.intensity), dist2);
                 if (gc_whitted_nonzero(c) &&
-                    gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi), s.spawn_scale),
+                    gc_whitted_unoccluded(GC_INSTANCES_FIRST_ARGS GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi), s.spawn_scale),
                                           GC_XYZ(light.position)))
                     direct += c;
             }
@@ -142,7 +144,7 @@ GC_FUNC float3 gc_whitted_sample(GC_SCENE_PARAMS, GcRenderParams params, uint pi
                         const float3 c = gc_whitted_area_light(brdf_cos, GC_XYZ(lm.emission), cos_light, dist2,
                                                                e.pmf / e.area);
                         if (gc_whitted_nonzero(c) &&
-                            gc_whitted_unoccluded(GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi), s.spawn_scale),
+                            gc_whitted_unoccluded(GC_INSTANCES_FIRST_ARGS GC_BVH_ARGS, gc_offset_ray_origin(s.p, gc_side_normal(s.ng, wi), s.spawn_scale),
                                                   gc_offset_ray_origin(p_light, gc_side_normal(GC_XYZ(la.ng), -wi), gc_spawn_scale(s.p, la.ng.w))))
                             direct += c;
                     }

@@ -1,5 +1,6 @@
-// The path integrator on instanced scenes (megakernel.cl with GC_SCENE_INSTANCED,
-// gc_instance_attribs.h, DeviceScene::upload_instanced), on each OpenCL device:
+// The path and Whitted integrators on instanced scenes (megakernel.cl and whitted.cl with
+// GC_SCENE_INSTANCED, gc_scene_trace.h, gc_instance_attribs.h, DeviceScene::upload_instanced),
+// on each OpenCL device:
 //  - a glTF whose nodes reuse a floor, a cube (moved, turned 30 degrees, mirrored) and an area
 //    light (moved, mirrored) renders as the same file loaded flat (load_gltf). Metric: relative
 //    MSE of the instanced image against the flat one, printed, next to the flat image's own
@@ -7,6 +8,7 @@
 //    under a fiftieth of that noise, so a light sampled on the wrong side, a normal or a tangent
 //    in the wrong space, or a missing instance all fail it;
 //  - two renders of the instanced scene give the same bits;
+//  - the AOVs get the scene flattened;
 //  - the meshes' device bytes do not change with the number of instances.
 #include <gtest/gtest.h>
 
@@ -141,7 +143,7 @@ SceneRequest request_for(const std::filesystem::path& path, bool keep_instances)
     return r;
 }
 
-RenderSettings settings_with_seed(std::uint32_t seed)
+RenderSettings settings_with_seed(std::uint32_t seed, IntegratorKind integrator = IntegratorKind::Path)
 {
     RenderSettings s;
     s.width = 64;
@@ -149,6 +151,7 @@ RenderSettings settings_with_seed(std::uint32_t seed)
     s.spp = 64;
     s.max_depth = 5;
     s.seed = seed;
+    s.integrator = integrator;
     return s;
 }
 
@@ -159,9 +162,10 @@ struct Rendered {
     float emitter_power = 0.0f;
 };
 
-Rendered render(const cl::DeviceInfo& device, const PreparedScene& prepared, std::uint32_t seed)
+Rendered render(const cl::DeviceInfo& device, const PreparedScene& prepared, std::uint32_t seed,
+                IntegratorKind integrator = IntegratorKind::Path)
 {
-    Session session(device, prepared, settings_with_seed(seed));
+    Session session(device, prepared, settings_with_seed(seed, integrator));
     session.render();
     const DeviceScene& scene = session.device_scene();
     return {session.renderer().sums(false).sums, scene.instanced(), scene.emitter_count, scene.summary.emitter_power};
@@ -186,9 +190,9 @@ double mean_value(const std::vector<glm::vec4>& a)
     return sum / double(a.size());
 }
 
-class InstancedPath : public cl::test::DeviceTest {};
+class InstancedRender : public cl::test::DeviceTest {};
 
-TEST_F(InstancedPath, ReusedGltfMeshesRenderAsTheFlatLoad)
+TEST_F(InstancedRender, ReusedGltfMeshesRenderAsTheFlatLoad)
 {
     cl::test::TempDir dir;
     const std::filesystem::path file = write_reused_meshes_gltf(dir.path());
@@ -200,50 +204,52 @@ TEST_F(InstancedPath, ReusedGltfMeshesRenderAsTheFlatLoad)
     EXPECT_EQ(instanced.instances->scene.instances.size(), 6u);
     EXPECT_EQ(instanced.scene.triangle_count(), 2u + 12u + 2u);
     EXPECT_EQ(flat.scene.triangle_count(), 2u + 3u * 12u + 2u * 2u);
-    for (const cl::DeviceInfo& device : devices) {
-        const Rendered inst = render(device, instanced, 1);
-        const Rendered inst_again = render(device, instanced, 1);
-        const Rendered reference = render(device, flat, 1);
-        const Rendered other_seed = render(device, flat, 2);
-        const double error = rel_mse(inst.sums, reference.sums);
-        const double noise = rel_mse(other_seed.sums, reference.sums);
-        const bool same_bits =
-            std::memcmp(inst.sums.data(), inst_again.sums.data(), inst.sums.size() * sizeof(glm::vec4)) == 0;
-        std::printf("[instanced path] %s: emitters %u (flat %u), power %.6g (flat %.6g); mean %.5f (flat %.5f); "
-                    "rel MSE against the flat load %.3g, flat noise (seed 2 vs 1) %.3g, bound %.3g; run to run %s\n",
-                    device.device_name.c_str(), inst.emitters, reference.emitters, double(inst.emitter_power),
-                    double(reference.emitter_power), mean_value(inst.sums), mean_value(reference.sums), error, noise,
-                    0.02 * noise, same_bits ? "same bits" : "DIFFER");
-        EXPECT_TRUE(inst.instanced) << "the path integrator did not keep the instances";
-        EXPECT_FALSE(reference.instanced);
-        EXPECT_EQ(inst.emitters, reference.emitters);
-        EXPECT_NEAR(inst.emitter_power, reference.emitter_power, 1e-5 * reference.emitter_power);
-        EXPECT_GT(mean_value(reference.sums), 0.02) << "the scene should be lit";
-        EXPECT_GT(noise, 0.0);
-        EXPECT_LT(error, 0.02 * noise) << device.device_name;
-        EXPECT_TRUE(same_bits) << device.device_name;
-    }
+    for (const cl::DeviceInfo& device : devices)
+        for (const IntegratorKind integrator : {IntegratorKind::Path, IntegratorKind::Whitted}) {
+            const Rendered inst = render(device, instanced, 1, integrator);
+            const Rendered inst_again = render(device, instanced, 1, integrator);
+            const Rendered reference = render(device, flat, 1, integrator);
+            const Rendered other_seed = render(device, flat, 2, integrator);
+            const double error = rel_mse(inst.sums, reference.sums);
+            const double noise = rel_mse(other_seed.sums, reference.sums);
+            const bool same_bits =
+                std::memcmp(inst.sums.data(), inst_again.sums.data(), inst.sums.size() * sizeof(glm::vec4)) == 0;
+            std::printf("[instanced %s] %s: emitters %u (flat %u), power %.6g (flat %.6g); mean %.5f (flat %.5f); "
+                        "rel MSE against the flat load %.3g, flat noise (seed 2 vs 1) %.3g, bound %.3g; run to run "
+                        "%s\n",
+                        integrator_name(integrator), device.device_name.c_str(), inst.emitters, reference.emitters,
+                        double(inst.emitter_power), double(reference.emitter_power), mean_value(inst.sums),
+                        mean_value(reference.sums), error, noise, 0.02 * noise, same_bits ? "same bits" : "DIFFER");
+            EXPECT_TRUE(inst.instanced) << "the integrator did not keep the instances";
+            EXPECT_FALSE(reference.instanced);
+            EXPECT_EQ(inst.emitters, reference.emitters);
+            EXPECT_NEAR(inst.emitter_power, reference.emitter_power, 1e-5 * reference.emitter_power);
+            EXPECT_GT(mean_value(reference.sums), 0.02) << "the scene should be lit";
+            EXPECT_GT(noise, 0.0);
+            EXPECT_LT(error, 0.02 * noise) << device.device_name << ", " << integrator_name(integrator);
+            EXPECT_TRUE(same_bits) << device.device_name;
+        }
 }
 
-TEST_F(InstancedPath, OtherIntegratorsGetTheSceneFlattened)
+TEST_F(InstancedRender, AovsGetTheSceneFlattened)
 {
     cl::test::TempDir dir;
     const PreparedScene instanced = prepare_scene(request_for(write_reused_meshes_gltf(dir.path()), true));
-    RenderSettings whitted = settings_with_seed(1);
-    whitted.integrator = IntegratorKind::Whitted;
-    whitted.spp = 1;
-    Session session(context->device(), instanced, whitted);
+    RenderSettings aov = settings_with_seed(1, IntegratorKind::Aov);
+    aov.aov = AovKind::Albedo;
+    aov.spp = 1;
+    Session session(context->device(), instanced, aov);
     EXPECT_FALSE(session.device_scene().instanced());
     EXPECT_EQ(session.device_scene().triangle_count, 2u + 3u * 12u + 2u * 2u);
     session.render();
     double lit = 0.0;
     for (const glm::vec4& v : session.renderer().sums(false).sums) lit += v.x + v.y + v.z;
-    std::printf("[instanced whitted] flattened to %u triangles; image sum %.4g\n", session.device_scene().triangle_count,
-                lit);
+    std::printf("[instanced aov] flattened to %u triangles; albedo image sum %.4g\n",
+                session.device_scene().triangle_count, lit);
     EXPECT_GT(lit, 0.0);
 }
 
-TEST_F(InstancedPath, MeshBytesDoNotGrowWithInstances)
+TEST_F(InstancedRender, MeshBytesDoNotGrowWithInstances)
 {
     cl::test::TempDir dir;
     const PreparedScene base = prepare_scene(request_for(write_reused_meshes_gltf(dir.path()), true));
