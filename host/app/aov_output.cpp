@@ -19,7 +19,11 @@ void write_aov_layers(const std::vector<AovLayer>& layers, const cl::DeviceInfo&
                       const RenderSettings& settings, const RenderSetup& setup, const FilmSums& beauty,
                       const ImageMetadata& meta, const std::filesystem::path& output)
 {
-    const Session session(device, prepared, settings, setup);
+    // The layers are AOVs: a session of the AOV integrator (which takes an instanced scene
+    // flattened), on the frame's camera and size.
+    RenderSettings aov_settings = settings;
+    aov_settings.integrator = IntegratorKind::Aov;
+    const Session session(device, prepared, aov_settings, setup);
     std::vector<ExrPart> parts = render_aov_layers(session.renderer(), beauty, layers);
     for (ExrPart& part : parts)
         part.text = {{"Software", "geocold-cl " GC_VERSION},

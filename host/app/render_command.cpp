@@ -226,8 +226,11 @@ ExitCode run_render(const Options& options)
         // Ctrl-C asks for the image so far, now: the guides would take another render.
         if (options.denoise && outcome.cancelled) log_warning("interrupted: the image is written without denoising");
         if (options.denoise && !outcome.cancelled && samples > 0) {
-            // The guides are facts of the scene and the camera: the first device renders them.
-            Session guide_session(devices.front(), prepared, settings, setup);
+            // The guides are facts of the scene and the camera: the first device renders them,
+            // with the AOV integrator (which takes an instanced scene flattened).
+            RenderSettings guide_settings = settings;
+            guide_settings.integrator = IntegratorKind::Aov;
+            Session guide_session(devices.front(), prepared, guide_settings, setup);
             const DenoiseGuides guides = render_denoise_guides(guide_session.renderer(), samples);
             image = denoise(image, &guides.albedo, &guides.normal, denoise_options);
             log_verbose("denoised with Open Image Denoise (albedo and normal guides)");

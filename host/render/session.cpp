@@ -24,10 +24,6 @@ std::string seconds_since(Clock::time_point start)
     return text;
 }
 
-}  // namespace
-
-namespace {
-
 // The file, instanced where the request keeps instances and the file reuses a mesh; the
 // instances' two-level BVH parts too when `with_bvh` (the flat BVH is prepare_scene's).
 PreparedScene load_prepared(const SceneRequest& request, bool with_bvh)
@@ -67,6 +63,18 @@ PreparedScene load_prepared(const SceneRequest& request, bool with_bvh)
     return prepared;
 }
 
+DeviceScene upload_prepared(const cl::Context& context, const PreparedScene& prepared, const RenderSettings& settings,
+                            const RenderSetup& setup)
+{
+    const EnvironmentMap environment = load_environment_map(settings);
+    if (!prepared.instances) return DeviceScene::upload(context, prepared.scene, prepared.bvh, environment, setup.tuning);
+    if (keeps_instances(settings.integrator))
+        return DeviceScene::upload_instanced(context, prepared.instances->scene, prepared.instances->bvh, environment,
+                                             setup.tuning);
+    const Scene flat = flatten_instances(prepared.instances->scene, MirroredWinding::FrontStaysFront);
+    return DeviceScene::upload(context, flat, build_bvh(flat), environment, setup.tuning);
+}
+
 }  // namespace
 
 PreparedScene load_with_camera(const SceneRequest& request) { return load_prepared(request, false); }
@@ -84,22 +92,6 @@ PreparedScene prepare_scene(const SceneRequest& request)
                 seconds_since(start));
     return prepared;
 }
-
-namespace {
-
-DeviceScene upload_prepared(const cl::Context& context, const PreparedScene& prepared, const RenderSettings& settings,
-                            const RenderSetup& setup)
-{
-    const EnvironmentMap environment = load_environment_map(settings);
-    if (!prepared.instances) return DeviceScene::upload(context, prepared.scene, prepared.bvh, environment, setup.tuning);
-    if (keeps_instances(settings.integrator))
-        return DeviceScene::upload_instanced(context, prepared.instances->scene, prepared.instances->bvh, environment,
-                                             setup.tuning);
-    const Scene flat = flatten_instances(prepared.instances->scene, MirroredWinding::FrontStaysFront);
-    return DeviceScene::upload(context, flat, build_bvh(flat), environment, setup.tuning);
-}
-
-}  // namespace
 
 Session::Session(const cl::DeviceInfo& device, const PreparedScene& prepared, const RenderSettings& settings,
                  const RenderSetup& setup)

@@ -332,8 +332,8 @@ TEST(Cli, TextureTransformSampleRendersAsItsReadmeSays)
 }
 
 // The same sample, path traced: it draws three of its meshes twice, so geocold-cl keeps them
-// as instances (-v says so), and the image is the flattened scene's (--flatten-instances) up
-// to the rounding of the instances' attributes. Metric: the largest absolute difference of a
+// as instances (-v says so; its AOV layers are rendered flattened), and the image is the
+// flattened scene's (--flatten-instances) up to the rounding of the instances' attributes. Metric: the largest absolute difference of a
 // pixel channel of the two PFMs, printed, bound 1e-3 (the two differed by 2.3e-5 at most in
 // 85 of 30000 pixels when this was written).
 TEST(Cli, ReusedMeshesAreInstancedAndRenderAsFlattened)
@@ -344,7 +344,8 @@ TEST(Cli, ReusedMeshesAreInstancedAndRenderAsFlattened)
         (std::filesystem::path(GC_TEST_SOURCE_DIR) / "tests/data/scenes/texture-transform/TextureTransformTest.gltf").string();
     const std::vector<std::string> common = {scene, "--spp", "4", "--res", "64x48", "--device", "cpu", "--env", "1,1,1"};
     std::vector<std::string> instanced_args = common, flat_args = common;
-    instanced_args.insert(instanced_args.end(), {"-v", "-o", (dir / "instanced.pfm").string()});
+    // The AOV layers of an instanced frame come from the scene flattened (the AOV integrator's).
+    instanced_args.insert(instanced_args.end(), {"-v", "--aovs", "albedo,depth", "-o", (dir / "instanced.pfm").string()});
     flat_args.insert(flat_args.end(), {"--flatten-instances", "-v", "-o", (dir / "flat.pfm").string()});
     const RunResult instanced = run_process(cli_path(), instanced_args, cli_options());
     const RunResult flat = run_process(cli_path(), flat_args, cli_options());
@@ -352,6 +353,7 @@ TEST(Cli, ReusedMeshesAreInstancedAndRenderAsFlattened)
     ASSERT_EQ(flat.exit_code, 0) << flat.err;
     EXPECT_NE(instanced.err.find("instanced: 9 meshes drawn by 12 instances"), std::string::npos) << instanced.err;
     EXPECT_EQ(flat.err.find("instanced:"), std::string::npos) << flat.err;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "instanced.aovs.exr")) << instanced.err;
     const Film a = read_image(dir / "instanced.pfm"), b = read_image(dir / "flat.pfm");
     ASSERT_EQ(a.width(), b.width());
     float worst = 0.0f;
