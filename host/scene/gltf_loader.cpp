@@ -9,8 +9,6 @@
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
-
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
@@ -21,6 +19,7 @@
 #include "host/scene/gltf_files.h"
 #include "host/scene/gltf_images.h"
 #include "host/scene/gltf_material_layers.h"
+#include "host/scene/scene_checks.h"
 #include "host/scene/scene_file.h"
 #include "host/scene/texture_io.h"
 #include "host/scene/triangle_sink.h"
@@ -32,28 +31,6 @@ namespace gc {
 namespace {
 
 constexpr double k_pi = 3.14159265358979323846;
-
-// Limits on the flattened scene: 2^27 triangles (the device keeps ~200 bytes per triangle, so
-// 25 GiB), and what the host's memory can take while loading, building the BVH and (on a CPU
-// device, whose buffers are host memory) rendering: a 2M-triangle mesh peaked at 1.16 GB
-// resident rendering on PoCL, ~480 bytes per triangle, rounded up.
-constexpr std::uint64_t k_max_scene_triangles = std::uint64_t{1} << 27;
-constexpr std::uint64_t k_host_bytes_per_triangle = 512;
-
-std::string gibibytes(std::uint64_t bytes)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GiB", static_cast<double>(bytes) / double(1ull << 30));
-    return text;
-}
-
-std::uint64_t physical_memory_bytes()
-{
-    const long pages = sysconf(_SC_PHYS_PAGES);
-    const long page_size = sysconf(_SC_PAGESIZE);
-    if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::uint64_t>::max();
-    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
-}
 
 class GltfConverter {
 public:
@@ -244,13 +221,10 @@ private:
             }
         }
         m_planned_triangles += triangles;
-        const std::uint64_t memory = m_planned_triangles * k_host_bytes_per_triangle;
-        if (m_planned_triangles > k_max_scene_triangles || memory > physical_memory_bytes())
+        if (std::string why; !flat_triangles_fit(m_planned_triangles, why))
             fail("mesh instances add up to " + std::to_string(m_planned_triangles) + " triangles by instance " +
                  std::to_string(m_instances + 1) + " (mesh " + std::to_string(mesh_index) +
-                 "); instances are flattened, which would need about " + gibibytes(memory) +
-                 " of host memory (this machine has " + gibibytes(physical_memory_bytes()) + "; at most " +
-                 std::to_string(k_max_scene_triangles) + " triangles are supported)");
+                 "); instances are flattened, which would need " + why);
         ++m_instances;
     }
 

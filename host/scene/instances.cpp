@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "host/scene/scene_checks.h"
 #include "host/util/error.h"
 
 namespace gc {
@@ -100,6 +101,11 @@ void append_instance(Scene& out, const Scene& src, std::uint32_t first, std::uin
 Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding)
 {
     validate_instances(scene);
+    const std::size_t total = scene.instanced_triangle_count();
+    if (std::string why; !flat_triangles_fit(total, why))
+        throw InputError(scene.meshes.name_for_messages() + ": its " + std::to_string(scene.instances.size()) +
+                         " instances draw " + std::to_string(total) + " triangles; copied out flat they would need " +
+                         why + "; the path and Whitted integrators trace them as instances");
     const Scene& src = scene.meshes;
     Scene out;
     out.materials = src.materials;
@@ -107,7 +113,6 @@ Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding)
     out.point_lights = src.point_lights;
     out.camera = src.camera;
     out.source_path = src.source_path;
-    const std::size_t total = scene.instanced_triangle_count();
     out.positions.reserve(3 * total);
     out.normals.reserve(3 * total);
     out.material_ids.reserve(total);
@@ -137,6 +142,11 @@ Scene with_world_emitters(const InstancedScene& scene)
         first[m] = static_cast<std::uint32_t>(lo - emissive.begin());
         end[m] = static_cast<std::uint32_t>(hi - emissive.begin());
     }
+    std::uint64_t drawn = 0;
+    for (const Instance& inst : scene.instances) drawn += end[inst.mesh] - first[inst.mesh];
+    if (std::string why; !flat_triangles_fit(src.triangle_count() + drawn, why))
+        throw InputError(src.name_for_messages() + ": its instances draw " + std::to_string(drawn) +
+                         " emissive triangles, each kept in world space for light sampling, which would need " + why);
     for (const Instance& inst : scene.instances)
         if (first[inst.mesh] < end[inst.mesh])
             append_instance(out, src, first[inst.mesh], end[inst.mesh], inst.object_to_world,

@@ -63,13 +63,15 @@ enum class MirroredWinding {
 // The world-space scene: instance after instance, each instance's triangles in mesh order, so
 // triangle k of instance i is triangle first_flat(i) + k. Positions through object_to_world
 // (float arithmetic, in the order (m0 x + m1 y) + m2 z + m3), normals through its inverse
-// transpose, tangents through its linear part. Validates first.
+// transpose, tangents through its linear part. Validates first; InputError naming the file
+// when the flat scene would pass the limits of scene_checks.h (flat_triangles_fit).
 Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding = MirroredWinding::AsTransformed);
 
 // The meshes' triangles, then every instance's emissive triangles in world space (instance
 // by instance, in mesh order, as flatten_instances writes them with FrontStaysFront): the
 // triangles an instanced scene's device shading data covers, so that light sampling reads
-// world-space emitters the way it reads a flat scene's. Validates first.
+// world-space emitters the way it reads a flat scene's. Validates first; InputError naming
+// the file when those triangles pass the limits of scene_checks.h.
 Scene with_world_emitters(const InstancedScene& scene);
 
 // The world bounds of the instances' mesh boxes (eight corners each through the transform):

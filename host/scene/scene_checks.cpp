@@ -1,7 +1,11 @@
 #include "host/scene/scene_checks.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -47,6 +51,32 @@ void check_renderable_scale(const Scene& scene)
              << " precision and renders scenes at least " << kSmallestRenderableSize << " across (scale the scene up)";
         throw InputError(what.str());
     }
+}
+
+std::uint64_t physical_memory_bytes()
+{
+    const long pages = sysconf(_SC_PHYS_PAGES);
+    const long page_size = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::uint64_t>::max();
+    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+}
+
+std::string gibibytes(std::uint64_t bytes)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", static_cast<double>(bytes) / double(1ull << 30));
+    return text;
+}
+
+bool flat_triangles_fit(std::uint64_t triangles, std::string& why)
+{
+    const std::uint64_t memory = triangles > std::numeric_limits<std::uint64_t>::max() / kHostBytesPerFlatTriangle
+                                     ? std::numeric_limits<std::uint64_t>::max()
+                                     : triangles * kHostBytesPerFlatTriangle;
+    if (triangles <= kMaxFlatTriangles && memory <= physical_memory_bytes()) return true;
+    why = "about " + gibibytes(memory) + " of host memory (this machine has " + gibibytes(physical_memory_bytes()) +
+          "; at most " + std::to_string(kMaxFlatTriangles) + " triangles are supported)";
+    return false;
 }
 
 }  // namespace gc

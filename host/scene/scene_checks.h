@@ -2,6 +2,9 @@
 // whichever loader read the file.
 #pragma once
 
+#include <cstdint>
+#include <string>
+
 #include "host/scene/scene.h"
 
 namespace gc {
@@ -28,5 +31,19 @@ inline constexpr double kSmallestRenderableSize = 1e-12;
 // kLargestRenderableCoordinate or its largest side is below kSmallestRenderableSize: such a
 // scene would render dark or black, and the fix (scaling it) is the user's to make.
 void check_renderable_scale(const Scene& scene);
+
+// Limits on a flat scene's triangles: 2^27 (the device keeps ~200 bytes per triangle, so
+// 25 GiB), and what the host's memory can take while loading, building the BVH and (on a CPU
+// device, whose buffers are host memory) rendering: a 2M-triangle mesh peaked at 1.16 GB
+// resident rendering on PoCL, ~480 bytes per triangle, rounded up.
+inline constexpr std::uint64_t kMaxFlatTriangles = std::uint64_t{1} << 27;
+inline constexpr std::uint64_t kHostBytesPerFlatTriangle = 512;
+
+// The machine's physical memory in bytes (the largest value when it cannot be read).
+std::uint64_t physical_memory_bytes();
+// "12.3 GiB".
+std::string gibibytes(std::uint64_t bytes);
+// Whether `triangles` fit the limits above; else `why` says how much memory they would need.
+bool flat_triangles_fit(std::uint64_t triangles, std::string& why);
 
 }  // namespace gc

@@ -764,6 +764,10 @@ TEST(GltfInstanced, AbsurdFlattenedTotalIsRefusedOnlyWhenFlattening)
     EXPECT_EQ(s.instances.size(), 3000u);
     EXPECT_EQ(s.mesh_ranges.size(), 1u);
     expect_input_error([&] { load_scene_keeping_instances(file); }, {"gltf_instances_absurd_total.gltf", "zero area"});
+    // Flattening it later (for an integrator that does not trace instances) is refused too,
+    // before any memory is taken.
+    expect_input_error([&] { flatten_instances(s); },
+                       {"gltf_instances_absurd_total.gltf", "3000 instances draw", "copied out flat"});
 }
 
 TEST(GltfInstanced, OnlyReusedMeshesComeBackInstanced)
