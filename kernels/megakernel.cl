@@ -108,10 +108,7 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
             /* extend -> shade -> shadow until the path ends (gc_shade_vertex stops it at max_depth). */
             for (bool first_segment = true;; first_segment = false) {
                 const GcSceneHit hit = first_segment && cam_traced ? cam_hit[k] : gc_scene_closest(ray);
-                const GcVertexResult res =
-                    gc_scene_hit(hit).prim == GC_INVALID
-                        ? gc_shade_escape(GC_SHADE_ARGS, params, path, ray)
-                        : gc_shade_surface(GC_SHADE_ARGS, params, path, ray, gc_scene_hit(hit), gc_scene_attribs(hit));
+                const GcVertexResult res = gc_shade_scene_vertex(params, path, ray, hit);
                 path = res.path;
                 if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_scene_occluded(res.shadow.ray))
                     path.radiance += res.shadow.contribution;

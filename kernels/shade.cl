@@ -1,6 +1,7 @@
 /*
  * shade.cl — one path vertex per queued path: gc_shade_vertex (kernels/shared/
- * gc_path_vertex.h, shared with the Vulkan compute reference) does the shading; this kernel
+ * gc_path_vertex.h, shared with the Vulkan compute reference; gc_shade_scene_vertex, which
+ * is it for a flat scene, also shades an instanced one's hits) does the shading; this kernel
  * only moves its result into the wavefront's queues, one global atomic per work-group and
  * queue (gc_queue.h). Work-items past the queue's end stay for the group's barriers.
  * A launch may hold fewer work-items than the queue: each group then takes further steps
@@ -8,11 +9,12 @@
  */
 #include "gc_path_vertex.h"
 #include "gc_queue.h"
+#include "gc_scene_trace.h"
 
 __kernel void shade(const GcRenderParams params,
-                    GC_SHADE_PARAMS,
+                    GC_INSTANCES_FIRST_PARAMS GC_SHADE_PARAMS,
                     __global GcRay* rays,
-                    __global const GcHit* hits,
+                    __global const GcSceneHit* hits,
                     __global GcPathState* paths,
                     __global const uint* queue_in,
                     __global uint* queue_out,
@@ -22,6 +24,7 @@ __kernel void shade(const GcRenderParams params,
                     const uint counter_out)
 {
     __local uint group_counts[2];
+    GC_INSTANCES_FIRST_UNUSED();
     const uint count = min(counters[counter_in], gc_pass_paths(params));
     /* Grid-stride, as in extend.cl, in steps the whole group takes together (base is the same
      * for all its work-items), because gc_queue_reserve2 has barriers. */
@@ -33,7 +36,8 @@ __kernel void shade(const GcRenderParams params,
         GcShadowRay shadow;
         if (queued) {
             slot = queue_in[q];
-            const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, paths[slot], rays[slot], hits[slot]);
+            const GcSceneHit hit = hits[slot];
+            const GcVertexResult res = gc_shade_scene_vertex(params, paths[slot], rays[slot], hit);
             paths[slot] = res.path;
             flags = res.flags;
             shadow = res.shadow;

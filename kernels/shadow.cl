@@ -2,10 +2,10 @@
  * their contribution to their path. At most one shadow ray per path is in flight, so the
  * read-modify-write of the path's radiance is race-free. Alpha-MASK cut-outs let the ray
  * through (gc_alpha.h). */
-#include "gc_traverse.h"
+#include "gc_scene_trace.h"
 
 __kernel void shadow(const GcRenderParams params,
-                     GC_BVH_PARAMS,
+                     GC_INSTANCES_FIRST_PARAMS GC_BVH_PARAMS,
                      __global const GcShadowRay* shadow_rays,
                      __global GcPathState* paths,
                      __global const uint* counters)
@@ -14,6 +14,6 @@ __kernel void shadow(const GcRenderParams params,
     /* Grid-stride, as in extend.cl. */
     for (uint q = get_global_id(0); q < count; q += get_global_size(0)) {
         const GcShadowRay s = shadow_rays[q];
-        if (!gc_trace_any(GC_BVH_ARGS, s.ray)) paths[s.slot].radiance += s.contribution;
+        if (!gc_scene_occluded(s.ray)) paths[s.slot].radiance += s.contribution;
     }
 }

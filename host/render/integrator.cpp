@@ -32,13 +32,11 @@ std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const De
                                             const RenderSettings& settings, const RenderSetup& setup,
                                             std::uint32_t batch_pixels)
 {
-    // The path integrator's megakernel and Whitted trace the two-level BVH; a Session uploads
-    // an instanced scene flattened for the AOVs (keeps_instances).
+    // A Session uploads an instanced scene flattened for the integrators that do not trace
+    // instances (keeps_instances).
     if (scene.instanced() && !keeps_instances(settings.integrator))
         throw UsageError(std::string("the ") + integrator_name(settings.integrator) +
                          " integrator does not trace instanced scenes; upload the scene flattened");
-    if (scene.instanced() && settings.integrator == IntegratorKind::Path)
-        return std::make_unique<MegakernelPathIntegrator>(context, scene, setup);
     switch (settings.integrator) {
     case IntegratorKind::Aov: return std::make_unique<AovIntegrator>(context, scene, setup);
     case IntegratorKind::Whitted: return std::make_unique<WhittedIntegrator>(context, scene, setup);

@@ -19,6 +19,7 @@
 #include "gc_types.h"
 #include "host/cl/buffer.h"
 #include "host/cl/context.h"
+#include "host/cl/kernel.h"
 #include "host/cl/program.h"
 #include "host/render/device_scene.h"
 #include "host/render/render_settings.h"
@@ -71,8 +72,18 @@ std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const De
 bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form = PathKernelForm::Auto);
 
 // Whether the integrator traces instanced scenes (DeviceScene::upload_instanced): the path
-// integrator (its megakernel form, on every device) and Whitted; the AOVs take them flattened.
+// integrator (both forms) and Whitted; the AOVs take them flattened.
 bool keeps_instances(IntegratorKind integrator);
+
+// Sets a scene kernel's arguments: `params`, then an instanced scene's instance buffers
+// (GC_INSTANCES_FIRST_PARAMS, gc_scene_trace.h), then `args`.
+template <class... Args>
+void set_scene_kernel_args(cl::Kernel& kernel, const dev::GcRenderParams& params, const DeviceScene& scene,
+                           const Args&... args)
+{
+    if (scene.instanced()) kernel.set_args(params, scene.instance_args(), args...);
+    else kernel.set_args(params, args...);
+}
 
 // The compile options every program of `scene` is built with: its BVH layout and features.
 std::string scene_program_options(const DeviceScene& scene);

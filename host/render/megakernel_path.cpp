@@ -32,10 +32,7 @@ void MegakernelPathIntegrator::begin_pass(dev::GcRenderParams& params)
 void MegakernelPathIntegrator::render_batch(const dev::GcRenderParams& params, const DeviceScene& scene,
                                             const FilmBuffers& film)
 {
-    if (scene.instanced())
-        m_kernel.set_args(params, scene.instance_args(), scene.scene_args(), film.sums, film.squares, film.pixel_list);
-    else
-        m_kernel.set_args(params, scene.scene_args(), film.sums, film.squares, film.pixel_list);
+    set_scene_kernel_args(m_kernel, params, scene, scene.scene_args(), film.sums, film.squares, film.pixel_list);
     const std::uint32_t items = (params.pixel_count + params.pixels_per_item - 1) / params.pixels_per_item;
     m_kernel.launch(m_context, items, local_size(m_context), "paths (megakernel)");
 }

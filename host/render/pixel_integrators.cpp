@@ -15,10 +15,7 @@ PixelKernelIntegrator::PixelKernelIntegrator(const cl::Context& context, const D
 void PixelKernelIntegrator::render_batch(const dev::GcRenderParams& params, const DeviceScene& scene,
                                          const FilmBuffers& film)
 {
-    if (scene.instanced())  // whitted.cl's GC_INSTANCES_FIRST_PARAMS (make_integrator refuses aov.cl)
-        m_kernel.set_args(params, scene.instance_args(), scene.scene_args(), film.sums);
-    else
-        m_kernel.set_args(params, scene.scene_args(), film.sums);
+    set_scene_kernel_args(m_kernel, params, scene, scene.scene_args(), film.sums);
     m_kernel.launch(m_context, params.pixel_count, 0, m_what);
 }
 

@@ -80,7 +80,11 @@ WavefrontPathIntegrator::WavefrontPathIntegrator(const cl::Context& context, con
       m_program(context, "wavefront.cl", scene_program_options(scene), setup.build)
 {
     m_rays = cl::Buffer<dev::GcRay>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path rays");
-    m_hits = cl::Buffer<dev::GcHit>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path hits");
+    // An instanced scene's hits carry their instance (GcInstanceHit, gc_scene_trace.h).
+    if (scene.instanced())
+        m_instance_hits = cl::Buffer<dev::GcInstanceHit>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path hits");
+    else
+        m_hits = cl::Buffer<dev::GcHit>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path hits");
     m_paths = cl::Buffer<dev::GcPathState>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "path state");
     m_queue_a = cl::Buffer<std::uint32_t>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "ray queue A");
     m_queue_b = cl::Buffer<std::uint32_t>::create(context, m_path_capacity, CL_MEM_READ_WRITE, "ray queue B");
@@ -118,7 +122,8 @@ void WavefrontPathIntegrator::render_batch(const dev::GcRenderParams& params, co
     m_last_queue_lengths.assign(2 * std::size_t{m_max_depth}, 0u);
     m_last_queue_paths = n;
     m_lengths_on_device = !m_sync_counts;
-    m_shadow.set_args(params, scene.bvh_args(), m_shadow_rays, m_paths, m_counters);
+    const cl_mem hits = scene.instanced() ? m_instance_hits.mem() : m_hits.mem();
+    set_scene_kernel_args(m_shadow, params, scene, scene.bvh_args(), m_shadow_rays, m_paths, m_counters);
     bool a_is_input = true;
     for (std::uint32_t depth = 0; depth < params.max_depth && live > 0; ++depth) {
         const std::uint32_t ray_width = m_launches.ray_width(depth, n);
@@ -129,10 +134,10 @@ void WavefrontPathIntegrator::render_batch(const dev::GcRenderParams& params, co
         zero_counters(m_context, m_counters, counter_out, 1);
         zero_counters(m_context, m_counters, GC_COUNTER_SHADOW, 1);
 
-        m_extend.set_args(params, scene.bvh_args(), m_rays, m_hits, queue_in, m_counters, counter_in);
+        set_scene_kernel_args(m_extend, params, scene, scene.bvh_args(), m_rays, hits, queue_in, m_counters, counter_in);
         m_extend.launch(m_context, wavefront_launch_size(live, ray_width), 0, "closest-hit rays");
-        m_shade.set_args(params, scene.shade_args(), m_rays, m_hits, m_paths, queue_in, queue_out, m_shadow_rays,
-                         m_counters, counter_in, counter_out);
+        set_scene_kernel_args(m_shade, params, scene, scene.shade_args(), m_rays, hits, m_paths, queue_in, queue_out,
+                              m_shadow_rays, m_counters, counter_in, counter_out);
         m_shade.launch(m_context, wavefront_launch_size(live, ray_width), 0, "shading");
         std::uint32_t shadows = n;
         if (m_sync_counts) {

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "gc_instance.h"
 #include "host/cl/kernel.h"
 #include "host/render/integrator.h"
 #include "host/render/wavefront_launches.h"
@@ -46,7 +47,8 @@ private:
 
     cl::Program m_program;
     cl::Buffer<dev::GcRay> m_rays;
-    cl::Buffer<dev::GcHit> m_hits;
+    cl::Buffer<dev::GcHit> m_hits;                   // a flat scene's
+    cl::Buffer<dev::GcInstanceHit> m_instance_hits;  // an instanced scene's
     cl::Buffer<dev::GcPathState> m_paths;
     cl::Buffer<std::uint32_t> m_queue_a;
     cl::Buffer<std::uint32_t> m_queue_b;

@@ -7,7 +7,8 @@
 //    noise (relative MSE of two flat renders with different seeds); the instanced one must be
 //    under a fiftieth of that noise, so a light sampled on the wrong side, a normal or a tangent
 //    in the wrong space, or a missing instance all fail it;
-//  - two renders of the instanced scene give the same bits;
+//  - two renders of the instanced scene give the same bits, and the wavefront form the
+//    megakernel's;
 //  - the AOVs get the scene flattened;
 //  - the meshes' device bytes do not change with the number of instances.
 #include <gtest/gtest.h>
@@ -163,9 +164,11 @@ struct Rendered {
 };
 
 Rendered render(const cl::DeviceInfo& device, const PreparedScene& prepared, std::uint32_t seed,
-                IntegratorKind integrator = IntegratorKind::Path)
+                IntegratorKind integrator = IntegratorKind::Path, PathKernelForm form = PathKernelForm::Auto)
 {
-    Session session(device, prepared, settings_with_seed(seed, integrator));
+    RenderSetup setup;
+    setup.tuning.path_kernel = form;
+    Session session(device, prepared, settings_with_seed(seed, integrator), setup);
     session.render();
     const DeviceScene& scene = session.device_scene();
     return {session.renderer().sums(false).sums, scene.instanced(), scene.emitter_count, scene.summary.emitter_power};
@@ -229,6 +232,25 @@ TEST_F(InstancedRender, ReusedGltfMeshesRenderAsTheFlatLoad)
             EXPECT_LT(error, 0.02 * noise) << device.device_name << ", " << integrator_name(integrator);
             EXPECT_TRUE(same_bits) << device.device_name;
         }
+}
+
+// The path integrator's two forms give the same bits on one device (tests/validation), an
+// instanced scene included: the wavefront's queued hits carry their instance.
+TEST_F(InstancedRender, WavefrontEqualsMegakernel)
+{
+    cl::test::TempDir dir;
+    const PreparedScene instanced = prepare_scene(request_for(write_reused_meshes_gltf(dir.path()), true));
+    for (const cl::DeviceInfo& device : devices) {
+        const Rendered mega = render(device, instanced, 3, IntegratorKind::Path, PathKernelForm::Megakernel);
+        const Rendered wave = render(device, instanced, 3, IntegratorKind::Path, PathKernelForm::Wavefront);
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < mega.sums.size(); ++i) differ += mega.sums[i] != wave.sums[i] ? 1 : 0;
+        std::printf("[instanced wavefront] %s: %zu of %zu pixels differ from the megakernel's (mean %.5f)\n",
+                    device.device_name.c_str(), differ, mega.sums.size(), mean_value(wave.sums));
+        EXPECT_TRUE(wave.instanced);
+        EXPECT_EQ(differ, 0u) << device.device_name;
+        EXPECT_GT(mean_value(wave.sums), 0.02);
+    }
 }
 
 TEST_F(InstancedRender, AovsGetTheSceneFlattened)
