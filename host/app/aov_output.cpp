@@ -19,8 +19,8 @@ void write_aov_layers(const std::vector<AovLayer>& layers, const cl::DeviceInfo&
                       const RenderSettings& settings, const RenderSetup& setup, const FilmSums& beauty,
                       const ImageMetadata& meta, const std::filesystem::path& output)
 {
-    // The layers are AOVs: a session of the AOV integrator (which takes an instanced scene
-    // flattened), on the frame's camera and size.
+    // The layers are AOVs: a session of the AOV integrator (whose program they use), on the
+    // frame's camera and size.
     RenderSettings aov_settings = settings;
     aov_settings.integrator = IntegratorKind::Aov;
     const Session session(device, prepared, aov_settings, setup);

@@ -364,9 +364,9 @@ Consistency (same image on every device):
                            without OpenImageIO)
 Scene:
       --gltf-scene N       which scene of a glTF file (default: the file's default scene)
-      --flatten-instances  copy a glTF's reused meshes into one flat scene (by default the
-                           path and Whitted integrators keep each mesh once on the device,
-                           drawn by instances through a two-level BVH)
+      --flatten-instances  copy a glTF's reused meshes into one flat scene (by default each
+                           mesh is kept once on the device, drawn by instances through a
+                           two-level BVH)
 Other:
   -q, --quiet              no progress bar (it is also off when stderr is not a terminal)
   -v, --verbose            more detail (kernel build and cache, timings)

@@ -20,7 +20,6 @@
 #include "host/render/multi_device.h"
 #include "host/render/partial_image.h"
 #include "host/render/denoise_guides.h"
-#include "host/render/integrator.h"
 #include "host/render/session.h"
 #include "host/util/log.h"
 #include "host/util/progress.h"
@@ -140,8 +139,7 @@ ExitCode run_render(const Options& options)
     }
 
     SceneRequest request = scene_request(options);
-    // A Session flattens instances for the integrators that do not trace them (the AOV layers).
-    request.keep_instances = keeps_instances(settings.integrator) && !options.flatten_instances;
+    request.keep_instances = !options.flatten_instances;
     PreparedScene prepared = prepare_scene(request);
     if (const auto warning = unlit_scene_warning(prepared.scene, settings)) log_warning(*warning);
 
@@ -227,7 +225,7 @@ ExitCode run_render(const Options& options)
         if (options.denoise && outcome.cancelled) log_warning("interrupted: the image is written without denoising");
         if (options.denoise && !outcome.cancelled && samples > 0) {
             // The guides are facts of the scene and the camera: the first device renders them,
-            // with the AOV integrator (which takes an instanced scene flattened).
+            // in a session of the AOV integrator (whose program they use).
             RenderSettings guide_settings = settings;
             guide_settings.integrator = IntegratorKind::Aov;
             Session guide_session(devices.front(), prepared, guide_settings, setup);

@@ -3,7 +3,6 @@
 #include "host/render/megakernel_path.h"
 #include "host/render/pixel_integrators.h"
 #include "host/render/wavefront_path.h"
-#include "host/util/error.h"
 
 namespace gc {
 
@@ -17,11 +16,6 @@ bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form)
     return !device.is_gpu;
 }
 
-bool keeps_instances(IntegratorKind integrator)
-{
-    return integrator == IntegratorKind::Path || integrator == IntegratorKind::Whitted;
-}
-
 std::string scene_program_options(const DeviceScene& scene)
 {
     return program_options(scene.bvh.layout()) + " " + program_options(scene.features) +
@@ -32,11 +26,6 @@ std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const De
                                             const RenderSettings& settings, const RenderSetup& setup,
                                             std::uint32_t batch_pixels)
 {
-    // A Session uploads an instanced scene flattened for the integrators that do not trace
-    // instances (keeps_instances).
-    if (scene.instanced() && !keeps_instances(settings.integrator))
-        throw UsageError(std::string("the ") + integrator_name(settings.integrator) +
-                         " integrator does not trace instanced scenes; upload the scene flattened");
     switch (settings.integrator) {
     case IntegratorKind::Aov: return std::make_unique<AovIntegrator>(context, scene, setup);
     case IntegratorKind::Whitted: return std::make_unique<WhittedIntegrator>(context, scene, setup);

@@ -71,10 +71,6 @@ std::unique_ptr<Integrator> make_integrator(const cl::Context& context, const De
 // on one device.
 bool path_megakernel_for(const cl::DeviceInfo& device, PathKernelForm form = PathKernelForm::Auto);
 
-// Whether the integrator traces instanced scenes (DeviceScene::upload_instanced): the path
-// integrator (both forms) and Whitted; the AOVs take them flattened.
-bool keeps_instances(IntegratorKind integrator);
-
 // Sets a scene kernel's arguments: `params`, then an instanced scene's instance buffers
 // (GC_INSTANCES_FIRST_PARAMS, gc_scene_trace.h), then `args`.
 template <class... Args>

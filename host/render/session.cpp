@@ -7,9 +7,7 @@
 #include <variant>
 
 #include "host/render/environment.h"
-#include "host/render/integrator.h"
 #include "host/scene/load.h"
-#include "host/scene/instances.h"
 #include "host/util/log.h"
 
 namespace gc {
@@ -68,11 +66,8 @@ DeviceScene upload_prepared(const cl::Context& context, const PreparedScene& pre
 {
     const EnvironmentMap environment = load_environment_map(settings);
     if (!prepared.instances) return DeviceScene::upload(context, prepared.scene, prepared.bvh, environment, setup.tuning);
-    if (keeps_instances(settings.integrator))
-        return DeviceScene::upload_instanced(context, prepared.instances->scene, prepared.instances->bvh, environment,
-                                             setup.tuning);
-    const Scene flat = flatten_instances(prepared.instances->scene, MirroredWinding::FrontStaysFront);
-    return DeviceScene::upload(context, flat, build_bvh(flat), environment, setup.tuning);
+    return DeviceScene::upload_instanced(context, prepared.instances->scene, prepared.instances->bvh, environment,
+                                         setup.tuning);
 }
 
 }  // namespace

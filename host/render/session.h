@@ -33,8 +33,8 @@ struct SceneRequest {
     LoadOptions load;
     CameraOverrides camera;  // unset fields: the file's camera, or the framing of resolve_camera
     // A glTF whose nodes draw some mesh more than once stays instanced
-    // (PreparedScene::instances), each mesh once on the device, for the integrators that
-    // trace instances (keeps_instances: path, Whitted); a Session flattens it for the others.
+    // (PreparedScene::instances), each mesh once on the device (every integrator traces the
+    // two-level BVH).
     bool keep_instances = false;
 };
 
@@ -62,9 +62,7 @@ PreparedScene prepare_scene(const SceneRequest& request);
 class Session {
 public:
     // Uploads `prepared` and the environment map settings.env_map_path names to `device`,
-    // and builds the integrator's program. The session keeps nothing of `prepared`. An
-    // instanced scene goes up instanced for the integrators that trace instances
-    // (keeps_instances), flattened for the others.
+    // and builds the integrator's program. The session keeps nothing of `prepared`.
     Session(const cl::DeviceInfo& device, const PreparedScene& prepared, const RenderSettings& settings,
             const RenderSetup& setup = {});
     // The renderer holds the context by reference.

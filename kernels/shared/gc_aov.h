@@ -39,16 +39,21 @@ GC_FUNC float3 gc_aov_preview(float3 albedo, float3 ns, float3 dir, float3 emiss
     return albedo * (0.15f + 0.85f * cosine) + fmin(emission, make_float3(1.0f, 1.0f, 1.0f));
 }
 
-/* The value of AOV params.aov for a camera ray and its closest hit. */
-GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, GcHit hit)
+/* The value of AOV params.aov for a ray that left the scene. */
+GC_FUNC float3 gc_aov_miss_value(GcRenderParams params)
+{
+    if (params.aov == GC_AOV_PRIMID) return make_float3(-1.0f, -1.0f, -1.0f);
+    if (params.aov == GC_AOV_PREVIEW) return GC_XYZ(params.env_radiance);
+    return make_float3(0.0f, 0.0f, 0.0f);
+}
+
+/* The value of AOV params.aov for a camera ray and its hit (hit.prim valid) on a triangle
+ * with attributes `tri`, in the ray's space (an instance's taken to world space,
+ * gc_scene_trace.h). */
+GC_FUNC float3 gc_aov_value_at(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, GcHit hit, GcTriangleAttribs tri)
 {
     GC_SHADE_UNUSED();
-    if (hit.prim == GC_INVALID) {
-        if (params.aov == GC_AOV_PRIMID) return make_float3(-1.0f, -1.0f, -1.0f);
-        if (params.aov == GC_AOV_PREVIEW) return GC_XYZ(params.env_radiance);
-        return make_float3(0.0f, 0.0f, 0.0f);
-    }
-    const GcSurface s = gc_surface_at(GC_ATTRIB(hit.prim), ray, hit);
+    const GcSurface s = gc_surface_at(tri, ray, hit);
     const GcMaterial m = GC_MATERIAL(s.material);
     if (params.aov == GC_AOV_ALBEDO) return gc_shade_albedo(GC_SHADE_ARGS, m, s.uv);
     /* The denoiser's albedo shows emitters too (clamped to 1), so that it sees where a lamp
@@ -59,7 +64,7 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
     if (params.aov == GC_AOV_NORMAL) return s.ns;
     /* The denoiser's normal is the one the path tracer shades with: normal maps applied. */
     if (params.aov == GC_AOV_GUIDE_NORMAL)
-        return gc_shade_normal(GC_SHADE_ARGS, m, GC_ATTRIB(hit.prim), make_float2(hit.u, hit.v), s.ns, s.uv);
+        return gc_shade_normal(GC_SHADE_ARGS, m, tri, make_float2(hit.u, hit.v), s.ns, s.uv);
     if (params.aov == GC_AOV_DEPTH) return make_float3(hit.t, hit.t, hit.t);
     if (params.aov == GC_AOV_PRIMID) {
         const float id = gc_float(hit.prim);
@@ -67,6 +72,13 @@ GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, G
     }
     return gc_aov_preview(gc_shade_albedo(GC_SHADE_ARGS, m, s.uv), s.ns, GC_XYZ(ray.dir_tmax),
                           gc_shade_emission(GC_SHADE_ARGS, m, s.uv));
+}
+
+/* The value of AOV params.aov for a camera ray and its closest hit in a flat scene. */
+GC_FUNC float3 gc_aov_value(GC_SHADE_PARAMS, GcRenderParams params, GcRay ray, GcHit hit)
+{
+    if (hit.prim == GC_INVALID) return gc_aov_miss_value(params);
+    return gc_aov_value_at(GC_SHADE_ARGS, params, ray, hit, GC_ATTRIB(hit.prim));
 }
 
 GC_NAMESPACE_END
