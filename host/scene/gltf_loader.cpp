@@ -32,6 +32,40 @@ namespace {
 
 constexpr double k_pi = 3.14159265358979323846;
 
+// The scene's root nodes; without scenes in the file, every node that is nobody's child.
+std::vector<int> root_nodes(const tinygltf::Model& model, int scene_index)
+{
+    if (scene_index >= 0) return model.scenes[static_cast<std::size_t>(scene_index)].nodes;
+    std::vector<int> roots;
+    std::vector<char> is_child(model.nodes.size(), 0);
+    for (const tinygltf::Node& n : model.nodes)
+        for (int c : n.children)
+            if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = 1;
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+        if (!is_child[i]) roots.push_back(static_cast<int>(i));
+    return roots;
+}
+
+// Whether the scene's nodes draw some mesh more than once. Bad indices and nodes met twice
+// are skipped here: GltfConverter::convert_scene reports them.
+bool reuses_a_mesh(const tinygltf::Model& model, int scene_index)
+{
+    std::vector<int> uses(model.meshes.size(), 0);
+    std::vector<char> seen(model.nodes.size(), 0);
+    std::vector<int> stack = root_nodes(model, scene_index);
+    while (!stack.empty()) {
+        const int n = stack.back();
+        stack.pop_back();
+        if (n < 0 || static_cast<std::size_t>(n) >= model.nodes.size() || seen[static_cast<std::size_t>(n)]++) continue;
+        const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(n)];
+        if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < uses.size() &&
+            ++uses[static_cast<std::size_t>(node.mesh)] > 1)
+            return true;
+        stack.insert(stack.end(), node.children.begin(), node.children.end());
+    }
+    return false;
+}
+
 class GltfConverter {
 public:
     // With `instanced`, each mesh goes into `scene` once, in object space, and every node that
@@ -51,43 +85,9 @@ public:
         for (std::size_t i = 0; i < m_model.materials.size(); ++i) m_uv_sets[i] = uv_set(m_model.materials[i], static_cast<int>(i));
     }
 
-    // The scene's root nodes; without scenes in the file, every node that is nobody's child.
-    std::vector<int> root_nodes(int scene_index) const
-    {
-        if (scene_index >= 0) return m_model.scenes[static_cast<std::size_t>(scene_index)].nodes;
-        std::vector<int> roots;
-        std::vector<char> is_child(m_model.nodes.size(), 0);
-        for (const tinygltf::Node& n : m_model.nodes)
-            for (int c : n.children)
-                if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = 1;
-        for (std::size_t i = 0; i < m_model.nodes.size(); ++i)
-            if (!is_child[i]) roots.push_back(static_cast<int>(i));
-        return roots;
-    }
-
-    // Whether the scene's nodes draw some mesh more than once. Bad indices and nodes met twice
-    // are skipped here: convert_scene reports them.
-    bool reuses_a_mesh(int scene_index) const
-    {
-        std::vector<int> uses(m_model.meshes.size(), 0);
-        std::vector<char> seen(m_model.nodes.size(), 0);
-        std::vector<int> stack = root_nodes(scene_index);
-        while (!stack.empty()) {
-            const int n = stack.back();
-            stack.pop_back();
-            if (n < 0 || static_cast<std::size_t>(n) >= m_model.nodes.size() || seen[static_cast<std::size_t>(n)]++) continue;
-            const tinygltf::Node& node = m_model.nodes[static_cast<std::size_t>(n)];
-            if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < uses.size() &&
-                ++uses[static_cast<std::size_t>(node.mesh)] > 1)
-                return true;
-            stack.insert(stack.end(), node.children.begin(), node.children.end());
-        }
-        return false;
-    }
-
     void convert_scene(int scene_index)
     {
-        const std::vector<int> roots = root_nodes(scene_index);
+        const std::vector<int> roots = root_nodes(m_model, scene_index);
 
         // Depth-first in file order, with an explicit stack: a hostile file cannot overflow
         // ours, and a node met twice (a cycle or a shared child) is an error, as the spec says
@@ -732,7 +732,7 @@ Scene convert_gltf(const std::filesystem::path& path, const LoadOptions& options
     Scene scene;
     scene.source_path = name;
     if (only_where_reused) {
-        *only_where_reused = GltfConverter(model, name, files, scene, nullptr).reuses_a_mesh(scene_index);
+        *only_where_reused = reuses_a_mesh(model, scene_index);
         if (!*only_where_reused) instanced = nullptr;
     }
     GltfConverter converter(model, name, files, scene, instanced);

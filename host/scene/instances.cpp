@@ -105,7 +105,7 @@ Scene flatten_instances(const InstancedScene& scene, MirroredWinding winding)
     if (std::string why; !flat_triangles_fit(total, why))
         throw InputError(scene.meshes.name_for_messages() + ": its " + std::to_string(scene.instances.size()) +
                          " instances draw " + std::to_string(total) + " triangles; copied out flat they would need " +
-                         why + "; the path and Whitted integrators trace them as instances");
+                         why);
     const Scene& src = scene.meshes;
     Scene out;
     out.materials = src.materials;

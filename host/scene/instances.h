@@ -55,7 +55,7 @@ enum class MirroredWinding {
     // exact transforms (the traversal tests' reference).
     AsTransformed,
     // Corners 1 and 2 swapped, bitangent signs flipped: the face the file calls front stays
-    // front, as load_gltf does for mirrored nodes and the path integrator for instances
+    // front, as load_gltf does for mirrored nodes and the kernels do for instances
     // (gc_instance_attribs.h).
     FrontStaysFront,
 };

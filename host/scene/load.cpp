@@ -13,12 +13,25 @@ namespace gc {
 
 namespace {
 
-Scene load_by_extension(const std::filesystem::path& path, const LoadOptions& options)
+// The file's extension, lower case (".obj", ".glb", ...).
+std::string extension_of(const std::filesystem::path& path)
 {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+bool is_gltf(const std::filesystem::path& path)
+{
+    const std::string ext = extension_of(path);
+    return ext == ".gltf" || ext == ".glb";
+}
+
+Scene load_by_extension(const std::filesystem::path& path, const LoadOptions& options)
+{
+    const std::string ext = extension_of(path);
     if (ext == ".obj") return load_obj(path, options);
-    if (ext == ".gltf" || ext == ".glb") return load_gltf(path, options);
+    if (is_gltf(path)) return load_gltf(path, options);
     throw InputError(path.string() + ": unsupported scene format '" + (ext.empty() ? std::string("(none)") : ext) +
                      "' (supported: .obj, .gltf, .glb)");
 }
@@ -36,9 +49,7 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options)
 std::variant<Scene, InstancedScene> load_scene_keeping_instances(const std::filesystem::path& path,
                                                                  const LoadOptions& options)
 {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext != ".gltf" && ext != ".glb") return load_scene(path, options);
+    if (!is_gltf(path)) return load_scene(path, options);
     std::variant<Scene, InstancedScene> loaded = load_gltf_instanced_where_reused(path, options);
     Scene& checked = loaded.index() == 0 ? std::get<Scene>(loaded) : std::get<InstancedScene>(loaded).meshes;
     check_some_triangle_has_area(checked);
