@@ -49,7 +49,7 @@ static void gc_adjoint_pixel(const GcRenderParams params, GC_SCENE_PARAMS, GcGra
 {
     for (uint k = 0u; k < params.samples_in_pass; ++k) {
         const uint sample = params.sample_index + k;
-        const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
+        const float4 jitter = gc_sample4(params, pixel, sample, GC_RNG_BLOCK_CAMERA);
         const GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
                                            pixel / params.width, jitter);
         const float3 L = gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, false, (float3)(0.0f), delta);

@@ -20,7 +20,7 @@ __kernel void generate(const GcRenderParams params,
     if (slot >= gc_pass_paths(params)) return;
     const uint pixel = gc_batch_pixel(params, pixel_list, slot / params.samples_in_pass);
     const uint sample = params.sample_index + slot % params.samples_in_pass;
-    const float4 jitter = gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA, params.seed);
+    const float4 jitter = gc_sample4(params, pixel, sample, GC_RNG_BLOCK_CAMERA);
     rays[slot] = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
                                   pixel / params.width, jitter);
     paths[slot] = gc_path_start(pixel, sample);

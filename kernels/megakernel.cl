@@ -73,7 +73,7 @@ GC_ITEM_BODY gc_megakernel_item(const uint item,
         for (uint k = 0u; k < lanes; ++k) {
             const uint px = gc_batch_pixel(params, pixel_list, first + (p0 + k) / samples);
             const uint sample = params.sample_index + (p0 + k) % samples;
-            const float4 jitter = gc_rand4(px, sample, GC_RNG_BLOCK_CAMERA, params.seed);
+            const float4 jitter = gc_sample4(params, px, sample, GC_RNG_BLOCK_CAMERA);
             cam[k] = gc_camera_sample(params.camera, params.width, params.height, px % params.width, px / params.width,
                                       jitter);
         }

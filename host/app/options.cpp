@@ -67,6 +67,12 @@ IntegratorKind parse_integrator(const std::string& text)
     bad_value("--integrator", text, "one of path, whitted, aov");
 }
 
+SamplerKind parse_sampler(const std::string& text)
+{
+    if (const auto kind = sampler_from_name(text)) return *kind;
+    bad_value("--sampler", text, "one of independent, sobol");
+}
+
 AovKind parse_aov(const std::string& text)
 {
     if (const auto kind = aov_from_name(text)) return *kind;
@@ -127,6 +133,7 @@ Options parse_options(const std::vector<std::string>& args)
             (arg == "--aperture" ? o.aperture_radius : o.focus_distance) = x;
         }
         else if (arg == "--seed") o.render.seed = static_cast<std::uint32_t>(parse_count(arg, value(), 0, 0xffffffffu));
+        else if (arg == "--sampler") o.render.sampler = parse_sampler(value());
         else if (arg == "--max-depth") o.render.max_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
         else if (arg == "--rr-depth") o.render.rr_depth = static_cast<std::uint32_t>(parse_count(arg, value(), 1, kMaxDepth));
         else if (arg == "--time-limit") {
@@ -299,6 +306,8 @@ Rendering:
       --max-depth N        path segments: 1 = emitters only, 2 = direct light (default 8)
       --rr-depth N         Russian roulette from this depth on (default 5)
       --seed N             random seed (default 0); same seed, same image
+      --sampler NAME       independent (default) | sobol: Owen-scrambled Sobol points,
+                           less noise at the same spp (best at powers of two)
       --env R,G,B|FILE     constant environment radiance (default 0,0,0), or a lat-long
                            map (.exr/.hdr/.pfm; +Y up), importance sampled
       --env-scale R,G,B    multiplies the environment map (default 1,1,1)

@@ -147,6 +147,7 @@ std::uint64_t render_options_hash(const RenderSettings& settings, const Camera& 
         h.add_field("noise threshold");
         add_value(h, settings.noise_threshold);
     }
+    if (settings.sampler != SamplerKind::Independent) h.add_field(sampler_name(settings.sampler));
     add_vec3(h, glm::vec3(camera.look_from.x, camera.look_from.y, camera.look_from.z));
     add_vec3(h, glm::vec3(camera.look_at.x, camera.look_at.y, camera.look_at.z));
     add_vec3(h, glm::vec3(camera.up.x, camera.up.y, camera.up.z));

@@ -13,12 +13,16 @@ namespace gc {
 
 enum class IntegratorKind { Aov, Path, Whitted };
 enum class AovKind { Preview, Albedo, Normal, Depth, PrimitiveId, GuideAlbedo, GuideNormal };
+// Where a sample's random numbers come from (kernels/shared/gc_rng.h): independent hashes, or
+// Owen-scrambled Sobol points (lower error at the same spp; docs/decisions/sobol-sampler.md).
+enum class SamplerKind { Independent, Sobol };
 
 struct RenderSettings {
     int width = 512;
     int height = 512;
     std::uint32_t spp = 64;
     std::uint32_t seed = 0;
+    SamplerKind sampler = SamplerKind::Independent;
     std::uint32_t max_depth = 8;       // path segments (Mitsuba's convention): 1 = emitters only
     std::uint32_t rr_depth = 5;        // Russian roulette from this depth on
     double time_limit_seconds = 0.0;   // 0 = none; otherwise stop after the pass that crosses it
@@ -65,6 +69,15 @@ inline std::optional<IntegratorKind> integrator_from_name(std::string_view name)
 {
     for (IntegratorKind k : {IntegratorKind::Aov, IntegratorKind::Path, IntegratorKind::Whitted})
         if (name == integrator_name(k)) return k;
+    return std::nullopt;
+}
+
+inline const char* sampler_name(SamplerKind k) { return k == SamplerKind::Sobol ? "sobol" : "independent"; }
+
+inline std::optional<SamplerKind> sampler_from_name(std::string_view name)
+{
+    for (SamplerKind k : {SamplerKind::Independent, SamplerKind::Sobol})
+        if (name == sampler_name(k)) return k;
     return std::nullopt;
 }
 

@@ -381,6 +381,7 @@ dev::GcRenderParams make_render_params(const SceneSummary& scene, const Camera& 
     p.width = static_cast<std::uint32_t>(settings.width);
     p.height = static_cast<std::uint32_t>(settings.height);
     p.seed = settings.seed;
+    p.flags = settings.sampler == SamplerKind::Sobol ? GC_RENDER_SOBOL : 0u;
     p.max_depth = settings.max_depth;
     p.integrator = integrator_code(settings.integrator);
     p.aov = aov_code(settings.aov);

@@ -26,7 +26,7 @@ GC_FUNC GcRay gc_aov_camera_ray(GcRenderParams params, uint pixel)
     float4 u = make_float4(0.5f, 0.5f, 0.5f, 0.5f);
     if (params.aov == GC_AOV_PREVIEW || params.aov == GC_AOV_ALBEDO || params.aov == GC_AOV_GUIDE_ALBEDO ||
         params.aov == GC_AOV_GUIDE_NORMAL) {
-        u = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
+        u = gc_sample4(params, pixel, params.sample_index, GC_RNG_BLOCK_CAMERA);
     }
     return gc_camera_sample(params.camera, params.width, params.height, pixel % params.width, pixel / params.width, u);
 }

@@ -91,15 +91,15 @@ static inline void gc_vertex_adjoint(GC_SHADE_PARAMS, GcRenderParams params, GcG
         return;
     }
 
-    const float4 r_light = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
-    const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
+    const float4 r_light = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT));
+    const float4 r_bsdf = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF));
     const GcTriangleAttribs tri = GC_ATTRIB(hit.prim);
     const GcSurface s = gc_surface_at(tri, ray, hit);
     GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
 
     if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
-        const float4 ra = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
+        const float4 ra = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA));
         if (gc_alpha_transparent(m, base.w, ra.x)) return; /* passed through: nothing here depends on a parameter */
     }
 

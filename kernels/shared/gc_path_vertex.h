@@ -117,8 +117,8 @@ GC_FUNC GcVertexResult gc_shade_surface(GC_SHADE_PARAMS, GcRenderParams params, 
      * the code that waits for it. Same numbers, same bits; at max depth both go unused, and the
      * light numbers where next-event estimation is skipped (a delta BSDF, no light). Figures:
      * docs/decisions/random-numbers.md. */
-    const float4 r_light = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT), params.seed);
-    const float4 r_bsdf = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF), params.seed);
+    const float4 r_light = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_LIGHT));
+    const float4 r_bsdf = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_BSDF));
     const GcSurface s = gc_surface_at(tri, ray, hit);
     GcMaterial m = gc_shade_material(GC_SHADE_ARGS, GC_MATERIAL(s.material), s.uv);
     const float4 base = gc_shade_base_color(GC_SHADE_ARGS, m, s.uv);
@@ -145,7 +145,7 @@ GC_FUNC GcVertexResult gc_shade_surface(GC_SHADE_PARAMS, GcRenderParams params, 
      * complement NEE never supplies: unbiased, only noisier behind BLEND surfaces. MASK
      * cut-outs cost no segment and are seen through by shadow rays. */
     if (GC_USE_ALPHA_BLEND != 0 && (m.flags & GC_MATF_ALPHA_BLEND) != 0u) {
-        const float4 ra = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA), params.seed);
+        const float4 ra = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_EXTRA));
         if (gc_alpha_transparent(m, base.w, ra.x)) {
             path.radiance = gc_with_w(L, path.radiance.w);
             if (path.depth < params.max_depth) {
@@ -220,7 +220,7 @@ GC_FUNC GcVertexResult gc_shade_surface(GC_SHADE_PARAMS, GcRenderParams params, 
         /* Russian roulette on the throughput's largest channel, capped so bright paths
          * still end sometimes (as Mitsuba's path integrator does). */
         const float survive = fmin(fmax(beta.x, fmax(beta.y, beta.z)) * eta_scale, 0.95f);
-        const float4 rr = gc_rand4(path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_ROULETTE), params.seed);
+        const float4 rr = gc_sample4(params, path.pixel, path.sample, gc_rng_block(bounce, GC_RNG_BLOCK_ROULETTE));
         if (rr.x >= survive) alive = false;
         else beta = beta / survive;
     }

@@ -1,5 +1,5 @@
 /*
- * gc_rng.h — counter-based random numbers.
+ * gc_rng.h — counter-based random numbers, independent or low-discrepancy.
  *
  * A sample's random numbers are a pure function of (pixel, sample index, dimension, seed):
  * never of thread id, queue slot or time, so every device, every batch size and every
@@ -7,8 +7,22 @@
  * Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)): integer-only,
  * so it is bit-identical on every device and on the host (tests/render checks that).
  *
- * Dimensions come in blocks of four: one hash gives four uniform floats. Integrators name
+ * Dimensions come in blocks of four: one call gives four uniform floats. Integrators name
  * their blocks (see GC_RNG_BLOCK_* below) so that two uses never share a block.
+ *
+ * Two samplers give those four numbers (GcRenderParams.flags picks, gc_sample4):
+ *   independent  gc_rand4: the hash of (pixel, sample, block, seed).
+ *   sobol        gc_sobol_rand4: Burley 2020, "Practical Hash-based Owen Scrambling" (JCGT
+ *                9(4)): the first four dimensions of Sobol's sequence at the sample index,
+ *                padded from block to block by shuffling the index with a nested uniform
+ *                scramble seeded by (pixel, block, seed), each dimension Owen-scrambled with
+ *                a seed of its own. Any 2^m consecutive samples from a multiple of 2^m are
+ *                stratified in every block, so chunked and adaptive renders keep it; the
+ *                estimate stays unbiased (each number is uniform) and integer-only, so
+ *                bit-identical everywhere too. Sobol's dimensions 0 and 1 form a (0,2)-
+ *                sequence, the best pair: they go to each block's 2D point, (x, y) in the
+ *                camera's block (pixel position) and (y, z) in the others (gc_bsdf_sample's
+ *                and gc_sample_light's direction or point after a choice in x).
  */
 #ifndef GC_RNG_H
 #define GC_RNG_H
@@ -63,6 +77,94 @@ GC_FUNC float4 gc_rand4(uint pixel, uint sample, uint block, uint seed)
 #define GC_RNG_BLOCK_EXTRA 3u
 
 GC_FUNC uint gc_rng_block(uint bounce, uint which) { return 1u + bounce * GC_RNG_BLOCKS_PER_BOUNCE + which; }
+
+/* Reverses the 32 bits of x (GLSL's bitfieldReverse; OpenCL C has none). */
+GC_FUNC uint gc_reverse_bits(uint x)
+{
+    x = ((x >> 1u) & 0x55555555u) | ((x & 0x55555555u) << 1u);
+    x = ((x >> 2u) & 0x33333333u) | ((x & 0x33333333u) << 2u);
+    x = ((x >> 4u) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4u);
+    x = ((x >> 8u) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8u);
+    return (x >> 16u) | (x << 16u);
+}
+
+/* Laine & Karras' hash, in Burley's improved constants: each output bit depends only on the
+ * input bits below it, so on bit-reversed input it is an Owen scramble. */
+GC_FUNC uint gc_laine_karras_permutation(uint x, uint seed)
+{
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
+
+/* Owen's nested uniform scramble of the binary fraction 0.x (most significant bit first). */
+GC_FUNC uint gc_nested_uniform_scramble(uint x, uint seed)
+{
+    return gc_reverse_bits(gc_laine_karras_permutation(gc_reverse_bits(x), seed));
+}
+
+/* Dimensions 0-3 of Sobol's sequence at `index`, as 32-bit fractions. Dimension 0 is the van
+ * der Corput sequence; 1-3 use the primitive polynomials x+1, x^2+x+1 and x^3+x+1 with
+ * initial numbers 1; 1, 3; 1, 3, 1 (Joe & Kuo's first entries), their direction numbers made
+ * by the recurrence as the bits of the index are read, so no table is indexed at run time. */
+GC_FUNC uint4 gc_sobol4(uint index)
+{
+    uint4 r = make_uint4(0u, 0u, 0u, 0u);
+    uint v1 = 0x80000000u;                       /* v_k of dimension 1 */
+    uint v2 = 0x80000000u, v2_1 = 0u;            /* v_k, v_{k-1} of dimension 2 */
+    uint v3 = 0x80000000u, v3_1 = 0u, v3_2 = 0u; /* v_k, v_{k-1}, v_{k-2} of dimension 3 */
+    uint k = 0u;
+    while (index != 0u) {
+        if (k == 1u) {
+            v1 ^= v1 >> 1u;
+            v2_1 = v2;
+            v2 = 0xC0000000u;
+            v3_1 = v3;
+            v3 = 0xC0000000u;
+        } else if (k > 1u) {
+            v1 ^= v1 >> 1u;
+            const uint n2 = v2 ^ v2_1 ^ (v2_1 >> 2u);
+            v2_1 = v2;
+            v2 = n2;
+            const uint n3 = k == 2u ? 0x20000000u : v3_1 ^ v3_2 ^ (v3_2 >> 3u);
+            v3_2 = v3_1;
+            v3_1 = v3;
+            v3 = n3;
+        }
+        if ((index & 1u) != 0u) {
+            r.x ^= 0x80000000u >> k;
+            r.y ^= v1;
+            r.z ^= v2;
+            r.w ^= v3;
+        }
+        index >>= 1u;
+        ++k;
+    }
+    return r;
+}
+
+/* Four low-discrepancy numbers in [0, 1) for (pixel, sample, block, seed): see the header. */
+GC_FUNC float4 gc_sobol_rand4(uint pixel, uint sample, uint block, uint seed)
+{
+    const uint4 key = gc_pcg4d(make_uint4(pixel, block, seed, 0x5EED50B0u));
+    const uint4 s = gc_sobol4(gc_nested_uniform_scramble(sample, key.x));
+    /* The dimensions' seeds: the key's words, the shuffle's rehashed for the fourth. */
+    const float d0 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.x, key.y));
+    const float d1 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.y, key.z));
+    const float d2 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.z, key.w));
+    const float d3 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.w, gc_pcg4d(key).x));
+    return block == GC_RNG_BLOCK_CAMERA ? make_float4(d0, d1, d2, d3) : make_float4(d2, d0, d1, d3);
+}
+
+/* The render's sampler's four numbers for (pixel, sample, block): GC_RENDER_SOBOL in flags
+ * picks the low-discrepancy one. */
+#define gc_sample4(params, pixel, sample, block)                                             \
+    (((params).flags & GC_RENDER_SOBOL) != 0u ? gc_sobol_rand4(pixel, sample, block, (params).seed) \
+                                              : gc_rand4(pixel, sample, block, (params).seed))
+
 
 GC_NAMESPACE_END
 

@@ -265,8 +265,10 @@ GC_STRUCT(GcCamera) {
 
 /* GcRenderParams.flags. GC_RENDER_PIXEL_LIST: the path integrator's batch slot i renders the
  * pixel pixel_list[pixel_offset + i] rather than pixel_offset + i (adaptive sampling renders
- * only the pixels still too noisy; gc_batch_pixel). */
+ * only the pixels still too noisy; gc_batch_pixel). GC_RENDER_SOBOL: the random numbers are
+ * low-discrepancy (gc_rng.h's gc_sample4). */
 #define GC_RENDER_PIXEL_LIST 1u
+#define GC_RENDER_SOBOL 2u
 
 /* The one parameter block every kernel takes. Set in one place on the host. */
 GC_STRUCT(GcRenderParams) {

@@ -5,7 +5,7 @@
  * reference (kernels/vk/whitted.comp) both call gc_whitted_sample, so the two trace the same
  * tree with the same random numbers.
  *
- * Model, per camera sample (pixel jitter from gc_rand4(pixel, sample, GC_RNG_BLOCK_CAMERA),
+ * Model, per camera sample (pixel jitter from gc_sample4(params, pixel, sample, GC_RNG_BLOCK_CAMERA),
  * a box filter, so more spp anti-alias):
  *   - a ray that leaves the scene adds weight * env (--env: the constant radiance, or the
  *     map's scale; the texels of a map are not looked up);
@@ -79,7 +79,7 @@ GC_FUNC float3 gc_whitted_sample(GC_INSTANCES_FIRST_PARAMS GC_SCENE_PARAMS, GcRe
     float3 stack_weight[GC_WHITTED_STACK];
     uint stack_depth[GC_WHITTED_STACK];
 
-    const float4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
+    const float4 jitter = gc_sample4(params, pixel, params.sample_index, GC_RNG_BLOCK_CAMERA);
     stack_ray[0] = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
                                     pixel / params.width, jitter);
     stack_weight[0] = make_float3(1.0f, 1.0f, 1.0f);
@@ -127,8 +127,7 @@ GC_FUNC float3 gc_whitted_sample(GC_INSTANCES_FIRST_PARAMS GC_SCENE_PARAMS, GcRe
             }
 
             if (params.num_emitters > 0u) {
-                const float4 r = gc_rand4(pixel, params.sample_index, gc_rng_block(depth - 1u, GC_RNG_BLOCK_LIGHT),
-                                          params.seed);
+                const float4 r = gc_sample4(params, pixel, params.sample_index, gc_rng_block(depth - 1u, GC_RNG_BLOCK_LIGHT));
                 const GcEmitter e = GC_EMITTER(gc_pick_emitter(GC_EMITTERS_ARG, params.num_emitters, r.x));
                 const float3 b = gc_sample_uniform_triangle(r.y, r.z);
                 const float3 p_light = b.x * GC_XYZ(e.v0) + b.y * GC_XYZ(e.v1) + b.z * GC_XYZ(e.v2);

@@ -25,7 +25,7 @@ void main()
     const uint pixel = params.pixel_offset + i;
 
     /* generate.cl */
-    const vec4 jitter = gc_rand4(pixel, params.sample_index, GC_RNG_BLOCK_CAMERA, params.seed);
+    const vec4 jitter = gc_sample4(params, pixel, params.sample_index, GC_RNG_BLOCK_CAMERA);
     GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
                                  pixel / params.width, jitter);
     GcPathState path = gc_path_start(pixel, params.sample_index);

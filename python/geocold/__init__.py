@@ -40,6 +40,8 @@ ArgumentError = _geocold.ArgumentError
 INTEGRATORS = ("path", "whitted", "aov")
 #: Every AOV the command line has (``--aov``).
 AOVS = ("preview", "albedo", "normal", "depth", "primid", "guide-albedo", "guide-normal")
+#: Every sampler the command line has (``--sampler``).
+SAMPLERS = ("independent", "sobol")
 
 _HERE = _Path(__file__).resolve().parent
 _IMAGE_MODULE = _HERE / "geocold-image-oiio.so"
@@ -416,7 +418,9 @@ class Renderer:
     ``"depth"``, ``"primid"``. ``res``: (width, height). ``spp``: the samples
     :meth:`render` adds by default (64; 1 for AOVs, as in the CLI). ``env``: a constant
     environment radiance, or the scale of ``env_map`` (a lat-long .exr/.hdr/.pfm).
-    ``samples_per_pass`` and ``wavefront_size`` change only the speed.
+    ``sampler``: ``"independent"`` or ``"sobol"`` (Owen-scrambled Sobol points: less noise at
+    the same spp, as ``--sampler sobol``). ``samples_per_pass`` and ``wavefront_size`` change
+    only the speed.
 
     Construction uploads the scene to the device and builds (or loads from the cache) the
     kernels. Raises :class:`DeviceError` for a device that does not exist,
@@ -426,7 +430,7 @@ class Renderer:
                  aov: Optional[str] = None, res: Tuple[int, int] = (512, 512), max_depth: int = 8,
                  seed: int = 0, spp: Optional[int] = None, rr_depth: int = 5,
                  env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
-                 samples_per_pass: int = 0, wavefront_size: int = 0):
+                 samples_per_pass: int = 0, wavefront_size: int = 0, sampler: str = "independent"):
         if not isinstance(scene, Scene):
             raise ArgumentError(f"Renderer: scene must be a geocold.Scene (from geocold.load), "
                                 f"not {type(scene).__name__}")
@@ -443,6 +447,8 @@ class Renderer:
         aov = aov or "preview"
         if aov not in AOVS:
             raise ArgumentError(f"Renderer: aov must be one of {', '.join(AOVS)}, not {aov!r}")
+        if sampler not in SAMPLERS:
+            raise ArgumentError(f"Renderer: sampler must be one of {', '.join(SAMPLERS)}, not {sampler!r}")
         try:
             width, height = (int(v) for v in res)
         except (TypeError, ValueError):
@@ -458,7 +464,7 @@ class Renderer:
             if isinstance(value, bool) or not isinstance(value, int) or not low <= value < 2 ** 32:
                 raise ArgumentError(f"Renderer: {name} must be an integer in [{low}, 2^32), not {value!r}")
         self._scene = scene
-        self._core = _geocold.RendererCore(scene._core, device, integrator, aov, width, height, spp, seed,
+        self._core = _geocold.RendererCore(scene._core, device, integrator, aov, width, height, spp, seed, sampler,
                                            max_depth, rr_depth, env, env_map or "", samples_per_pass,
                                            wavefront_size)
         self._spp = spp
@@ -558,7 +564,8 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
                  integrator: str = "path", aov: Optional[str] = None, res: Tuple[int, int] = (512, 512),
                  max_depth: int = 8, seed: int = 0, rr_depth: int = 5,
                  env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
-                 time_limit: float = 0.0, noise_threshold: float = 0.0) -> Tuple[Any, int]:
+                 time_limit: float = 0.0, noise_threshold: float = 0.0,
+                 sampler: str = "independent") -> Tuple[Any, int]:
     """Renders one frame on several devices at once, as ``geocold-cl --device all``.
 
     ``devices``: ``"all"``, or a list of device specs (as :class:`Renderer`'s ``device``). The
@@ -569,7 +576,8 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
     (float32 (H, W, 4)) and the samples per pixel in it (fewer than asked when ``time_limit``
     ended the frame). ``noise_threshold=T`` (> 0), like ``--noise-threshold T``: adaptive
     sampling, each 8x8 tile stopping once its pixels' relative standard error is below ``T``,
-    ``spp`` the cap; the same image on every run. Ctrl-C raises ``KeyboardInterrupt``."""
+    ``spp`` the cap; the same image on every run. ``sampler`` as :class:`Renderer`'s. Ctrl-C
+    raises ``KeyboardInterrupt``."""
     if not isinstance(scene, Scene):
         raise ArgumentError(f"render_frame: scene must be a geocold.Scene, not {type(scene).__name__}")
     if isinstance(devices, str):
@@ -583,6 +591,8 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
     aov = aov or "preview"
     if aov not in AOVS:
         raise ArgumentError(f"render_frame: aov must be one of {', '.join(AOVS)}, not {aov!r}")
+    if sampler not in SAMPLERS:
+        raise ArgumentError(f"render_frame: sampler must be one of {', '.join(SAMPLERS)}, not {sampler!r}")
     try:
         width, height = (int(v) for v in res)
     except (TypeError, ValueError):
@@ -598,7 +608,7 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
     if isinstance(noise_threshold, bool) or not isinstance(noise_threshold, (int, float)):
         raise ArgumentError(f"render_frame: noise_threshold must be a number, not {noise_threshold!r}")
     return _geocold.render_frame(scene._core, specs, integrator, aov, width, height, first, end, chunk_samples,
-                                 seed, max_depth, rr_depth, env, env_map or "", float(time_limit),
+                                 seed, sampler, max_depth, rr_depth, env, env_map or "", float(time_limit),
                                  float(noise_threshold))
 
 

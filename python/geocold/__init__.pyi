@@ -15,6 +15,7 @@ from ._geocold import SceneError as SceneError
 __version__: str
 INTEGRATORS: Tuple[str, ...]
 AOVS: Tuple[str, ...]
+SAMPLERS: Tuple[str, ...]
 Vec3 = Tuple[float, float, float]
 Image = npt.NDArray[np.float32]
 PathLike = Union[str, os.PathLike[str]]
@@ -122,7 +123,8 @@ class Renderer:
     def __init__(self, scene: Scene, device: Union[str, int, Device] = ..., integrator: str = ...,
                  aov: Optional[str] = ..., res: Tuple[int, int] = ..., max_depth: int = ..., seed: int = ...,
                  spp: Optional[int] = ..., rr_depth: int = ..., env: Union[float, Vec3] = ...,
-                 env_map: Optional[str] = ..., samples_per_pass: int = ..., wavefront_size: int = ...) -> None: ...
+                 env_map: Optional[str] = ..., samples_per_pass: int = ..., wavefront_size: int = ...,
+                 sampler: str = ...) -> None: ...
     @property
     def scene(self) -> Scene: ...
     def render(self, spp: Optional[int] = ..., *, time_limit: Optional[float] = ...,
@@ -144,7 +146,7 @@ def render_frame(scene: Scene, devices: Union[str, List[Union[str, int, Device]]
                  samples: Optional[Tuple[int, int]] = ..., chunk_samples: int = ..., integrator: str = ...,
                  aov: Optional[str] = ..., res: Tuple[int, int] = ..., max_depth: int = ..., seed: int = ...,
                  rr_depth: int = ..., env: Union[float, Vec3] = ..., env_map: Optional[str] = ...,
-                 time_limit: float = ..., noise_threshold: float = ...) -> Tuple[Image, int]:
+                 time_limit: float = ..., noise_threshold: float = ..., sampler: str = ...) -> Tuple[Image, int]:
     """One frame on several devices (chunks added in chunk order); returns (mean image, spp).
     noise_threshold > 0: adaptive sampling, spp the cap."""
 

@@ -310,10 +310,17 @@ AovKind parse_aov(const std::string& text)
     throw UsageError("aov must be one of preview, albedo, normal, depth, primid, guide-albedo, guide-normal, not '" + text + "'");
 }
 
+SamplerKind parse_sampler(const std::string& text)
+{
+    if (const auto kind = sampler_from_name(text)) return *kind;
+    throw UsageError("sampler must be one of independent, sobol, not '" + text + "'");
+}
+
 // The settings both gc.Renderer and gc.render_frame take, checked as the CLI checks them.
 RenderSettings render_settings(const std::string& integrator, const std::string& aov, int width, int height,
-                               std::uint32_t spp, std::uint32_t seed, std::uint32_t max_depth, std::uint32_t rr_depth,
-                               const Vec3Tuple& env, const std::string& env_map)
+                               std::uint32_t spp, std::uint32_t seed, const std::string& sampler,
+                               std::uint32_t max_depth, std::uint32_t rr_depth, const Vec3Tuple& env,
+                               const std::string& env_map)
 {
     if (width < 1 || height < 1 || width > 65536 || height > 65536)
         throw UsageError("res must be two sizes in [1, 65536], not (" + std::to_string(width) + ", " +
@@ -326,6 +333,7 @@ RenderSettings render_settings(const std::string& integrator, const std::string&
     settings.aov = parse_aov(aov);
     settings.spp = spp;
     settings.seed = seed;
+    settings.sampler = parse_sampler(sampler);
     settings.max_depth = max_depth;
     settings.rr_depth = rr_depth;
     settings.env_radiance = colour("env", env, false);
@@ -345,7 +353,7 @@ std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState
                                                       const std::string& integrator, const std::string& aov, int width,
                                                       int height, std::uint32_t first, std::uint32_t end,
                                                       std::uint32_t chunk_samples, std::uint32_t seed,
-                                                      std::uint32_t max_depth, std::uint32_t rr_depth,
+                                                      const std::string& sampler, std::uint32_t max_depth, std::uint32_t rr_depth,
                                                       const Vec3Tuple& env, const std::string& env_map, double time_limit,
                                                       double noise_threshold)
 {
@@ -354,7 +362,8 @@ std::tuple<FloatArray, std::uint32_t> render_frame_on(std::shared_ptr<SceneState
     if (noise_threshold < 0.0 || !std::isfinite(noise_threshold))
         throw UsageError("noise_threshold must be a relative standard error > 0, or 0 for none");
     if (device_specs.empty()) throw UsageError("devices must name at least one device");
-    RenderSettings settings = render_settings(integrator, aov, width, height, end, seed, max_depth, rr_depth, env, env_map);
+    RenderSettings settings =
+        render_settings(integrator, aov, width, height, end, seed, sampler, max_depth, rr_depth, env, env_map);
     const ChunkPlan plan = ChunkPlan::for_range(first, end, chunk_samples);
     FrameRounds rounds;
     if (noise_threshold > 0.0) {
@@ -425,10 +434,12 @@ class PyRenderer {
 public:
     PyRenderer(std::shared_ptr<SceneState> scene, const std::string& device, const std::string& integrator,
                const std::string& aov, int width, int height, std::uint32_t spp, std::uint32_t seed,
+               const std::string& sampler,
                std::uint32_t max_depth, std::uint32_t rr_depth, const Vec3Tuple& env, const std::string& env_map,
                std::uint32_t samples_per_pass, std::uint32_t wavefront_size)
         : m_state(std::move(scene)),
-          m_settings(render_settings(integrator, aov, width, height, spp, seed, max_depth, rr_depth, env, env_map))
+          m_settings(render_settings(integrator, aov, width, height, spp, seed, sampler, max_depth, rr_depth, env,
+                                     env_map))
     {
         m_settings.samples_per_pass = samples_per_pass;
         m_settings.wavefront_size = wavefront_size;
@@ -582,6 +593,7 @@ public:
         d["width"] = m_settings.width;
         d["height"] = m_settings.height;
         d["seed"] = m_settings.seed;
+        d["sampler"] = sampler_name(m_settings.sampler);
         d["load_seconds"] = m_state->load_seconds;
         d["bvh_seconds"] = m_state->bvh_seconds;
         d["upload_seconds"] = m_upload_seconds;
@@ -751,7 +763,7 @@ NB_MODULE(_geocold, m)
     m.def("read", &read_file, "path"_a);
     m.def("cli_main", &cli_main, "args"_a);
     m.def("render_frame", &render_frame_on, "scene"_a, "devices"_a, "integrator"_a, "aov"_a, "width"_a, "height"_a,
-          "first"_a, "end"_a, "chunk_samples"_a, "seed"_a, "max_depth"_a, "rr_depth"_a, "env"_a, "env_map"_a,
+          "first"_a, "end"_a, "chunk_samples"_a, "seed"_a, "sampler"_a, "max_depth"_a, "rr_depth"_a, "env"_a, "env_map"_a,
           "time_limit"_a, "noise_threshold"_a);
     m.def("has_oiio", [] { return gc::image_io_has_oiio(); });
 
@@ -771,7 +783,7 @@ NB_MODULE(_geocold, m)
 
     nb::class_<PyRenderer>(m, "RendererCore")
         .def(nb::init<std::shared_ptr<SceneState>, const std::string&, const std::string&, const std::string&, int, int,
-                      std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, const Vec3Tuple&, const std::string&,
+                      std::uint32_t, std::uint32_t, const std::string&, std::uint32_t, std::uint32_t, const Vec3Tuple&, const std::string&,
                       std::uint32_t, std::uint32_t>())
         .def("render", &PyRenderer::render, "spp"_a.none(), "time_limit"_a, "progress"_a.none())
         .def("film", &PyRenderer::film)

@@ -242,6 +242,7 @@ TEST(DeviceTraversal, PacketsOfEightEqualSingleRays)
     }
 }
 
+// Both samplers (gc_rand4, and gc_sobol_rand4's integer scrambles and Sobol recurrence).
 TEST(DeviceRng, StreamEqualsHost)
 {
     const std::vector<cl::DeviceInfo> devices = devices_or_skip();
@@ -261,22 +262,27 @@ TEST(DeviceRng, StreamEqualsHost)
         auto value_buf = cl::Buffer<glm::vec4>::create(context, count, CL_MEM_WRITE_ONLY, "rng values");
         key_buf.write(keys);
         cl::Kernel kernel = program.kernel("rng_probe");
-        kernel.set_args(key_buf, value_buf, count);
-        kernel.launch(context, count);
-        context.finish();
-        std::vector<glm::vec4> values(count);
-        value_buf.read(values);
-        std::size_t differing = 0;
-        for (std::uint32_t i = 0; i < count; ++i) {
-            const glm::vec4 expected = dev::gc_rand4(keys[i].x, keys[i].y, keys[i].z, keys[i].w);
-            if (values[i] != expected) ++differing;
-            for (int c = 0; c < 4; ++c) {
-                ASSERT_GE(values[i][c], 0.0f);
-                ASSERT_LT(values[i][c], 1.0f);
+        for (const std::uint32_t sobol : {0u, 1u}) {
+            kernel.set_args(key_buf, value_buf, count, sobol);
+            kernel.launch(context, count);
+            context.finish();
+            std::vector<glm::vec4> values(count);
+            value_buf.read(values);
+            std::size_t differing = 0;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                const glm::uvec4 k = keys[i];
+                const glm::vec4 expected =
+                    sobol != 0 ? dev::gc_sobol_rand4(k.x, k.y, k.z, k.w) : dev::gc_rand4(k.x, k.y, k.z, k.w);
+                if (values[i] != expected) ++differing;
+                for (int c = 0; c < 4; ++c) {
+                    ASSERT_GE(values[i][c], 0.0f);
+                    ASSERT_LT(values[i][c], 1.0f);
+                }
             }
+            std::printf("[rng] %s, %s: %u keys, %zu differ from the host\n", device.device_name.c_str(),
+                        sobol != 0 ? "sobol" : "independent", count, differing);
+            EXPECT_EQ(differing, 0u) << device.device_name << (sobol != 0 ? ", sobol" : ", independent");
         }
-        std::printf("[rng] %s: %u keys, %zu differ from the host\n", device.device_name.c_str(), count, differing);
-        EXPECT_EQ(differing, 0u) << device.device_name;
     }
 }
 

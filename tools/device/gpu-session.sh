@@ -2,7 +2,7 @@
 # Every GPU recipe in one device call (the tool's limit is 10 minutes a call, 8 files back):
 # the bare build with the bench tools and the Python module (multi-device-run.sh build), the
 # Python/CLI parity (python-parity.sh), one round of the multi-device runs, the 10^6-dragon
-# instancing preview and path trace, the gradients against Mitsuba (gradients.sh, with Mitsuba where
+# instancing preview and path trace, the Sobol sampler's cost, the gradients against Mitsuba (gradients.sh, with Mitsuba where
 # `GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh` carried it) and, with the time left, a
 # second round of the multi-device runs. Each step has its own time limit; the logs end up in
 # one archive, $OUT/all.tgz, and steps.log in it says how each step ended and when.
@@ -29,6 +29,17 @@ timeout 60 build/bare/geocold-instances --mesh .deps/shared/scenes/stanford-drag
     --instances 1000000 --device gpu --size 640x480 --spp 16 --out "$OUT/dragons-path.pfm" \
     > "$OUT/instances-path.log" 2>&1
 step "instances, path traced rc=$?"
+# The Sobol sampler's cost on the GPU: the Cornell box and the dragon, independent and sobol
+# alternated, three rounds (docs/performance.md reads the samples/s lines).
+for round in 1 2 3; do
+    for sampler in independent sobol; do
+        for s in scenes/cornell-box/CornellBox-Original.obj .deps/shared/scenes/stanford-dragon-100k/dragon.obj; do
+            echo "r$round $sampler $(basename "$s"): $(timeout 30 build/bare/geocold-cl "$s" --device gpu --res 1024x1024 \
+                --spp 1024 --sampler $sampler -v -o /tmp/sampler.pfm 2>&1 | grep -E 'samples/s|error')" >> "$OUT/sampler.log"
+        done
+    done
+done
+step "sampler cost rc=$?"
 if [ "$(left)" -gt 30 ]; then
     GEOCOLD_GRAD_REPEATS=3 timeout "$(left)" tools/device/gradients.sh > /dev/null 2>&1
     step "gradients rc=$?"
