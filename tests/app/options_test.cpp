@@ -36,6 +36,7 @@ TEST(Options, Defaults)
     EXPECT_EQ(o.render.max_depth, 8u);
     EXPECT_EQ(o.threads, 0);
     EXPECT_EQ(o.render.samples_per_pass, 0u);  // planned by the renderer
+    EXPECT_EQ(o.render.sampler, SamplerKind::Independent);
     EXPECT_TRUE(o.output_path.empty());
 }
 
@@ -45,7 +46,7 @@ TEST(Options, EveryOptionParses)
                              "--max-depth", "4", "--rr-depth", "2", "--time-limit", "1.5", "--res", "64x32",
                              "--env", "1,0.5,0.25", "--look-from", "0,1,4", "--look-at", "0,1,0", "--up", "0,1,0",
                              "--fov", "45", "--gltf-scene", "2", "--quiet", "--threads", "3", "--wavefront-size", "4096",
-                             "--samples-per-pass", "5", "scene.glb"});
+                             "--samples-per-pass", "5", "--sampler", "sobol", "scene.glb"});
     EXPECT_EQ(o.device, "gpu");
     EXPECT_EQ(o.output_path, "x.exr");
     EXPECT_EQ(o.render.integrator, IntegratorKind::Whitted);
@@ -56,6 +57,7 @@ TEST(Options, EveryOptionParses)
     EXPECT_EQ(o.render.rr_depth, 2u);
     EXPECT_EQ(o.render.wavefront_size, 4096u);
     EXPECT_EQ(o.render.samples_per_pass, 5u);
+    EXPECT_EQ(o.render.sampler, SamplerKind::Sobol);
     EXPECT_DOUBLE_EQ(o.render.time_limit_seconds, 1.5);
     EXPECT_EQ(o.render.width, 64);
     EXPECT_EQ(o.render.height, 32);
@@ -100,6 +102,7 @@ TEST(Options, BadInputIsAUsageErrorNamingTheOption)
     EXPECT_NE(usage_error({"--fov", "180", "s.obj"}).find("--fov"), std::string::npos);
     EXPECT_NE(usage_error({"--fov", "nan", "s.obj"}).find("--fov"), std::string::npos);
     EXPECT_NE(usage_error({"--integrator", "bdpt", "s.obj"}).find("path, whitted, aov"), std::string::npos);
+    EXPECT_NE(usage_error({"--sampler", "halton", "s.obj"}).find("independent, sobol"), std::string::npos);
     EXPECT_NE(usage_error({"--time-limit", "-3", "s.obj"}).find("--time-limit"), std::string::npos);
     EXPECT_NE(usage_error({"--up", "0,0,0", "s.obj"}).find("--up"), std::string::npos);
     EXPECT_NE(usage_error({"--look-from", "1,1,1", "--look-at", "1,1,1", "s.obj"}).find("differ"), std::string::npos);

@@ -37,7 +37,7 @@ def test_bad_device(gc, cornell):
 
 def test_bad_arguments(gc, cornell, device):
     bad = [dict(integrator="nope"), dict(aov="nope"), dict(res=(0, 10)), dict(res="big"),
-           dict(max_depth=0), dict(seed=-1), dict(spp=1.5), dict(env=(1, 2)), dict(device=3.5)]
+           dict(max_depth=0), dict(seed=-1), dict(spp=1.5), dict(env=(1, 2)), dict(device=3.5), dict(sampler="halton")]
     for kwargs in bad:
         with pytest.raises(gc.ArgumentError):
             gc.Renderer(cornell, **{"device": device, "res": RES, **kwargs})

@@ -22,14 +22,15 @@ def read_pfm(path):
     return data.reshape(h, w, 3)[::-1]  # PFM rows run bottom to top
 
 
-@pytest.mark.parametrize("integrator,extra", [("path", []), ("whitted", []), ("aov", ["--aov", "albedo"])])
-def test_render_equals_cli_bit_for_bit(gc, cornell, device, cli, tmp_path, integrator, extra):
+@pytest.mark.parametrize("integrator,extra,kwargs", [("path", [], {}), ("whitted", [], {}),
+                                                     ("aov", ["--aov", "albedo"], {"aov": "albedo"}),
+                                                     ("path", ["--sampler", "sobol"], {"sampler": "sobol"})])
+def test_render_equals_cli_bit_for_bit(gc, cornell, device, cli, tmp_path, integrator, extra, kwargs):
     spp = 1 if integrator == "aov" else 8
     out = tmp_path / "cli.pfm"
     subprocess.run([cli, "--quiet", "--device", device, "--res", f"{RES[0]}x{RES[1]}", "--spp", str(spp),
                     "--seed", "3", "--integrator", integrator, *extra, str(CORNELL), "-o", str(out)], check=True)
-    aov = "albedo" if extra else None
-    img = gc.Renderer(cornell, device=device, integrator=integrator, aov=aov, res=RES, seed=3).render(spp=spp)
+    img = gc.Renderer(cornell, device=device, integrator=integrator, res=RES, seed=3, **kwargs).render(spp=spp)
     assert img.dtype == np.float32 and img.shape == (RES[1], RES[0], 4)
     assert np.array_equal(img[..., :3].view(np.uint32), read_pfm(out).view(np.uint32))
 

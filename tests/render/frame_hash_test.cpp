@@ -72,5 +72,16 @@ TEST(FrameHash, TheLensChangesTheOptionsHash)
     EXPECT_NE(render_options_hash(settings, Camera{}, 32), pinhole);  // the chunk size too
 }
 
+// Partials of one frame must not mix samplers: the Sobol sampler changes the hash, and the
+// independent one leaves the hash partials written before samplers existed had.
+TEST(FrameHash, TheSamplerChangesTheOptionsHash)
+{
+    RenderSettings settings;
+    const Camera camera;
+    const std::uint64_t independent = render_options_hash(settings, camera, 64);
+    settings.sampler = SamplerKind::Sobol;
+    EXPECT_NE(render_options_hash(settings, camera, 64), independent);
+}
+
 }  // namespace
 }  // namespace gc
