@@ -89,7 +89,8 @@ GC_FUNC uint gc_reverse_bits(uint x)
 }
 
 /* Laine & Karras' hash, in Burley's improved constants: each output bit depends only on the
- * input bits below it, so on bit-reversed input it is an Owen scramble. */
+ * input bits below it, so on a bit-reversed fraction it is an Owen scramble (nested uniform:
+ * each bit flipped by a hash of the bits above it). */
 GC_FUNC uint gc_laine_karras_permutation(uint x, uint seed)
 {
     x += seed;
@@ -100,62 +101,63 @@ GC_FUNC uint gc_laine_karras_permutation(uint x, uint seed)
     return x;
 }
 
-/* Owen's nested uniform scramble of the binary fraction 0.x (most significant bit first). */
-GC_FUNC uint gc_nested_uniform_scramble(uint x, uint seed)
-{
-    return gc_reverse_bits(gc_laine_karras_permutation(gc_reverse_bits(x), seed));
-}
-
-/* Dimensions 0-3 of Sobol's sequence at `index`, as 32-bit fractions. Dimension 0 is the van
- * der Corput sequence; 1-3 use the primitive polynomials x+1, x^2+x+1 and x^3+x+1 with
- * initial numbers 1; 1, 3; 1, 3, 1 (Joe & Kuo's first entries), their direction numbers made
- * by the recurrence as the bits of the index are read, so no table is indexed at run time. */
-GC_FUNC uint4 gc_sobol4(uint index)
-{
-    uint4 r = make_uint4(0u, 0u, 0u, 0u);
-    uint v1 = 0x80000000u;                       /* v_k of dimension 1 */
-    uint v2 = 0x80000000u, v2_1 = 0u;            /* v_k, v_{k-1} of dimension 2 */
-    uint v3 = 0x80000000u, v3_1 = 0u, v3_2 = 0u; /* v_k, v_{k-1}, v_{k-2} of dimension 3 */
-    uint k = 0u;
-    while (index != 0u) {
-        if (k == 1u) {
-            v1 ^= v1 >> 1u;
-            v2_1 = v2;
-            v2 = 0xC0000000u;
-            v3_1 = v3;
-            v3 = 0xC0000000u;
-        } else if (k > 1u) {
-            v1 ^= v1 >> 1u;
-            const uint n2 = v2 ^ v2_1 ^ (v2_1 >> 2u);
-            v2_1 = v2;
-            v2 = n2;
-            const uint n3 = k == 2u ? 0x20000000u : v3_1 ^ v3_2 ^ (v3_2 >> 3u);
-            v3_2 = v3_1;
-            v3_1 = v3;
-            v3 = n3;
-        }
-        if ((index & 1u) != 0u) {
-            r.x ^= 0x80000000u >> k;
-            r.y ^= v1;
-            r.z ^= v2;
-            r.w ^= v3;
-        }
-        index >>= 1u;
-        ++k;
+/* Dimensions 0-3 of Sobol's sequence at a 16-bit index, each as its 32-bit fraction with the
+ * bits reversed (the form the scramble below takes). Dimension 0 is the van der Corput
+ * sequence (reversed: the index itself); 1-3 use the primitive polynomials x + 1, x^2 + x + 1
+ * and x^3 + x + 1 with initial numbers 1; 1, 3; 1, 3, 1 (Joe & Kuo's first entries). Their
+ * direction numbers are literal constants, added under a mask per bit: no table to index and
+ * no branch, so GPU lanes and CPU SIMD lanes stay together (tests/bsdf/sobol_sampler_test.cpp
+ * checks them against the recurrence). */
+#define GC_SOBOL_BIT(k, v1, v2, v3)                \
+    {                                              \
+        const uint m_ = 0u - ((index >> (k)) & 1u); \
+        r.y ^= (v1) & m_;                          \
+        r.z ^= (v2) & m_;                          \
+        r.w ^= (v3) & m_;                          \
     }
+GC_FUNC uint4 gc_sobol4_reversed(uint index)
+{
+    uint4 r = make_uint4(index & 0xFFFFu, 0u, 0u, 0u);
+    GC_SOBOL_BIT(0u, 0x00000001u, 0x00000001u, 0x00000001u)
+    GC_SOBOL_BIT(1u, 0x00000003u, 0x00000003u, 0x00000003u)
+    GC_SOBOL_BIT(2u, 0x00000005u, 0x00000006u, 0x00000004u)
+    GC_SOBOL_BIT(3u, 0x0000000Fu, 0x00000009u, 0x0000000Au)
+    GC_SOBOL_BIT(4u, 0x00000011u, 0x00000017u, 0x0000001Fu)
+    GC_SOBOL_BIT(5u, 0x00000033u, 0x0000003Au, 0x0000002Eu)
+    GC_SOBOL_BIT(6u, 0x00000055u, 0x00000071u, 0x00000045u)
+    GC_SOBOL_BIT(7u, 0x000000FFu, 0x000000A3u, 0x000000C9u)
+    GC_SOBOL_BIT(8u, 0x00000101u, 0x00000116u, 0x0000011Bu)
+    GC_SOBOL_BIT(9u, 0x00000303u, 0x00000339u, 0x000002A4u)
+    GC_SOBOL_BIT(10u, 0x00000505u, 0x00000677u, 0x0000079Au)
+    GC_SOBOL_BIT(11u, 0x00000F0Fu, 0x000009AAu, 0x00000B67u)
+    GC_SOBOL_BIT(12u, 0x00001111u, 0x00001601u, 0x0000101Eu)
+    GC_SOBOL_BIT(13u, 0x00003333u, 0x00003903u, 0x0000302Du)
+    GC_SOBOL_BIT(14u, 0x00005555u, 0x00007706u, 0x00004041u)
+    GC_SOBOL_BIT(15u, 0x0000FFFFu, 0x0000AA09u, 0x0000A0C3u)
     return r;
 }
+#undef GC_SOBOL_BIT
 
-/* Four low-discrepancy numbers in [0, 1) for (pixel, sample, block, seed): see the header. */
+/* Owen's scramble of a fraction given bit-reversed, returned in the usual order. */
+GC_FUNC uint gc_owen_scramble_reversed(uint reversed, uint seed)
+{
+    return gc_reverse_bits(gc_laine_karras_permutation(reversed, seed));
+}
+
+/* Four low-discrepancy numbers in [0, 1) for (pixel, sample, block, seed): see the header.
+ * The Sobol index has 16 bits: each run of 2^16 samples (sample >> 16) is scrambled with keys
+ * of its own, so windows of up to 2^16 samples stay stratified and the loop stays short. */
 GC_FUNC float4 gc_sobol_rand4(uint pixel, uint sample, uint block, uint seed)
 {
-    const uint4 key = gc_pcg4d(make_uint4(pixel, block, seed, 0x5EED50B0u));
-    const uint4 s = gc_sobol4(gc_nested_uniform_scramble(sample, key.x));
-    /* The dimensions' seeds: the key's words, the shuffle's rehashed for the fourth. */
-    const float d0 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.x, key.y));
-    const float d1 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.y, key.z));
-    const float d2 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.z, key.w));
-    const float d3 = gc_uint_to_unit_float(gc_nested_uniform_scramble(s.w, gc_pcg4d(key).x));
+    const uint4 key = gc_pcg4d(make_uint4(pixel, block, seed, (sample >> 16u) ^ 0x5EED50B0u));
+    /* The index shuffled within every aligned window (Owen's scramble of its 16 bits): the
+     * padding that keeps one block's points from pairing with another's. */
+    const uint index = gc_owen_scramble_reversed(gc_reverse_bits(sample) & 0xFFFF0000u, key.x) & 0xFFFFu;
+    const uint4 s = gc_sobol4_reversed(index);
+    const float d0 = gc_uint_to_unit_float(gc_owen_scramble_reversed(s.x, key.y));
+    const float d1 = gc_uint_to_unit_float(gc_owen_scramble_reversed(s.y, key.z));
+    const float d2 = gc_uint_to_unit_float(gc_owen_scramble_reversed(s.z, key.w));
+    const float d3 = gc_uint_to_unit_float(gc_owen_scramble_reversed(s.w, key.x ^ key.y));
     return block == GC_RNG_BLOCK_CAMERA ? make_float4(d0, d1, d2, d3) : make_float4(d2, d0, d1, d3);
 }
 

@@ -52,40 +52,77 @@ std::vector<dev::float4> window(std::uint32_t pixel, std::uint32_t first_sample,
     return points;
 }
 
-TEST(SobolSampler, UnscrambledPointsAreSobols)
+// Sobol's dimensions 0-3 by the recurrence of the direction numbers (Bratley & Fox): v_k =
+// a_1 v_{k-1} ^ ... ^ a_{s-1} v_{k-s+1} ^ v_{k-s} ^ (v_{k-s} >> s), v_k = m_k / 2^(k+1) for
+// the first s. What gc_sobol4_reversed's constants must give.
+dev::uint4 sobol_by_recurrence(std::uint32_t index)
 {
-    // Dimension 0 is the van der Corput sequence; dimensions 0 and 1 are a (0, m, 2)-net.
-    std::vector<dev::float4> points;
-    for (std::uint32_t i = 0; i < kPoints; ++i) {
-        const dev::uint4 s = dev::gc_sobol4(i);
-        EXPECT_EQ(s.x, dev::gc_reverse_bits(i)) << "index " << i;
-        points.push_back(dev::make_float4(float(s.x >> 8) / 16777216.0f, float(s.y >> 8) / 16777216.0f,
-                                          float(s.z >> 8) / 16777216.0f, float(s.w >> 8) / 16777216.0f));
+    struct Polynomial {
+        int s;
+        std::vector<int> a;  // a_1 .. a_{s-1}
+        std::vector<std::uint32_t> m;
+    };
+    const Polynomial polys[3] = {{1, {}, {1}}, {2, {1}, {1, 3}}, {3, {0, 1}, {1, 3, 1}}};
+    std::uint32_t out[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 32; ++k)
+        if ((index >> k) & 1u) out[0] ^= 0x80000000u >> k;
+    for (int d = 0; d < 3; ++d) {
+        const Polynomial& p = polys[d];
+        std::vector<std::uint32_t> v;
+        for (int k = 0; k < 32; ++k) {
+            if (k < p.s) {
+                v.push_back(p.m[k] << (31 - k));
+                continue;
+            }
+            std::uint32_t x = v[k - p.s] ^ (v[k - p.s] >> p.s);
+            for (int j = 1; j < p.s; ++j)
+                if (p.a[j - 1]) x ^= v[k - j];
+            v.push_back(x);
+        }
+        for (int k = 0; k < 32; ++k)
+            if ((index >> k) & 1u) out[d + 1] ^= v[k];
     }
-    for (int c = 0; c < 4; ++c) EXPECT_TRUE(is_stratified(points, c)) << "dimension " << c;
-    EXPECT_TRUE(is_02_net(points, 0, 1));
-    // Known points of dimensions 1-3 (Joe & Kuo's direction numbers): index 1 is 1/2
-    // everywhere, index 2 is 3/4 and index 3 is 1/4 in every dimension above 0.
-    EXPECT_EQ(dev::gc_sobol4(1).w, 0x80000000u);
-    for (const std::uint32_t v : {dev::gc_sobol4(2).y, dev::gc_sobol4(2).z, dev::gc_sobol4(2).w}) EXPECT_EQ(v, 0xC0000000u);
-    for (const std::uint32_t v : {dev::gc_sobol4(3).y, dev::gc_sobol4(3).z, dev::gc_sobol4(3).w}) EXPECT_EQ(v, 0x40000000u);
-    // Index 4 reads each dimension's third direction number: 1/8; 5/8 (x + 1's recurrence);
-    // 3/8 (x^2 + x + 1's); 1/8 (x^3 + x + 1's initial m_3 = 1).
-    const dev::uint4 four = dev::gc_sobol4(4);
+    return dev::make_uint4(out[0], out[1], out[2], out[3]);
+}
+
+TEST(SobolSampler, DirectionNumbersAreSobols)
+{
+    for (std::uint32_t i = 0; i < (1u << 16); ++i) {
+        const dev::uint4 got = dev::gc_sobol4_reversed(i);
+        const dev::uint4 want = sobol_by_recurrence(i);
+        ASSERT_EQ(dev::gc_reverse_bits(got.x), want.x) << "index " << i;
+        ASSERT_EQ(dev::gc_reverse_bits(got.y), want.y) << "index " << i;
+        ASSERT_EQ(dev::gc_reverse_bits(got.z), want.z) << "index " << i;
+        ASSERT_EQ(dev::gc_reverse_bits(got.w), want.w) << "index " << i;
+    }
+    // Known points: index 1 is 1/2 in every dimension, 2 is (1/4, 3/4, 3/4, 3/4), 4 reads each
+    // dimension's third direction number: 1/8, 5/8, 3/8, 1/8.
+    const dev::uint4 four = sobol_by_recurrence(4);
     EXPECT_EQ(four.x, 0x20000000u);
     EXPECT_EQ(four.y, 0xA0000000u);
     EXPECT_EQ(four.z, 0x60000000u);
     EXPECT_EQ(four.w, 0x20000000u);
+    EXPECT_EQ(sobol_by_recurrence(2).w, 0xC0000000u);
+    EXPECT_EQ(sobol_by_recurrence(1).y, 0x80000000u);
+    // The first 256 points: every dimension stratified, dimensions 0 and 1 a (0, 8, 2)-net.
+    std::vector<dev::float4> points;
+    for (std::uint32_t i = 0; i < kPoints; ++i) {
+        const dev::uint4 p = sobol_by_recurrence(i);
+        points.push_back(dev::make_float4(float(p.x >> 8) / 16777216.0f, float(p.y >> 8) / 16777216.0f,
+                                          float(p.z >> 8) / 16777216.0f, float(p.w >> 8) / 16777216.0f));
+    }
+    for (int c = 0; c < 4; ++c) EXPECT_TRUE(is_stratified(points, c)) << "dimension " << c;
+    EXPECT_TRUE(is_02_net(points, 0, 1));
 }
 
 TEST(SobolSampler, EveryAlignedWindowIsStratified)
 {
     // Chunks are aligned ranges of sample indices: 256 samples from any multiple of 256 are
     // stratified in each dimension, and each block's 2D point, (x, y) for the camera and
-    // (y, z) for the others, is a (0, 8, 2)-net.
+    // (y, z) for the others, is a (0, 8, 2)-net; past 2^16 samples too (new keys there).
     std::size_t windows = 0;
     for (const std::uint32_t pixel : {0u, 7u, 123457u})
-        for (const std::uint32_t first : {0u, kPoints, 37u * kPoints})
+        for (const std::uint32_t first : {0u, kPoints, 37u * kPoints, (1u << 16) + 5u * kPoints})
             for (const std::uint32_t block : {dev::gc_rng_block(0, 0), std::uint32_t(GC_RNG_BLOCK_CAMERA), dev::gc_rng_block(3, 1)})
                 for (const std::uint32_t seed : {0u, 99u}) {
                     const std::vector<dev::float4> points = window(pixel, first, block, seed);
