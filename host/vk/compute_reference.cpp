@@ -31,14 +31,33 @@ SceneBuffers upload_for_tracing(const Context& context, const Scene& scene, cons
     return SceneBuffers::upload(context, scene, &bvh, camera, settings, &environment);
 }
 
-std::span<const std::uint32_t> shader_for(IntegratorKind integrator)
+// The meshes' concatenated trees go where a flat scene's BVH goes (NODES, TRIS); the world
+// emitters follow the meshes' triangles.
+SceneBuffers upload_for_tracing(const Context& context, const InstancedScene& scene, const InstancedBvh& bvh,
+                                const Camera& camera, const RenderSettings& settings)
+{
+    refuse_sheen(scene.meshes);
+    FlatBvh meshes;
+    meshes.nodes = bvh.nodes;
+    meshes.triangles = bvh.tris;
+    const EnvironmentMap environment = load_environment_map(settings);
+    return SceneBuffers::upload(context, with_world_emitters(scene), &meshes, camera, settings, &environment,
+                                static_cast<std::uint32_t>(scene.meshes.triangle_count()));
+}
+
+std::span<const std::uint32_t> shader_for(IntegratorKind integrator, bool instanced)
 {
     switch (integrator) {
-    case IntegratorKind::Path: return shaders::path_comp();
-    case IntegratorKind::Whitted: return shaders::whitted_comp();
-    case IntegratorKind::Aov: return shaders::aov_comp();
+    case IntegratorKind::Path: return instanced ? shaders::path_instances_comp() : shaders::path_comp();
+    case IntegratorKind::Whitted: return instanced ? shaders::whitted_instances_comp() : shaders::whitted_comp();
+    case IntegratorKind::Aov: return instanced ? shaders::aov_instances_comp() : shaders::aov_comp();
     }
     throw UsageError(std::string("the Vulkan compute reference has no ") + integrator_name(integrator) + " integrator");
+}
+
+std::string shader_name(IntegratorKind integrator, bool instanced)
+{
+    return std::string(integrator_name(integrator)) + (instanced ? "_instances" : "") + ".comp";
 }
 
 }  // namespace
@@ -52,12 +71,32 @@ ComputeReference::ComputeReference(const Context& context, const Scene& scene, c
       m_film(context, VkDeviceSize(m_width) * m_height * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "film"),
       m_set(context, GC_VK_BINDING_COUNT, VK_SHADER_STAGE_COMPUTE_BIT)
 {
+    make_pipeline(shader_for(settings.integrator, false), shader_name(settings.integrator, false));
+}
+
+ComputeReference::ComputeReference(const Context& context, const InstancedScene& scene, const InstancedBvh& bvh,
+                                   const Camera& camera, const RenderSettings& settings)
+    : m_context(context),
+      m_width(static_cast<std::uint32_t>(settings.width)),
+      m_height(static_cast<std::uint32_t>(settings.height)),
+      m_scene(upload_for_tracing(context, scene, bvh, camera, settings)),
+      m_tlas(Buffer::with_data(context, bvh.tlas, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "top-level nodes")),
+      m_instances(Buffer::with_data(context, bvh.instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances")),
+      m_film(context, VkDeviceSize(m_width) * m_height * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "film"),
+      m_set(context, GC_VK_INSTANCED_BINDING_COUNT, VK_SHADER_STAGE_COMPUTE_BIT)
+{
+    m_set.bind(GC_VK_BINDING_TLAS, m_tlas);
+    m_set.bind(GC_VK_BINDING_INSTANCES, m_instances);
+    make_pipeline(shader_for(settings.integrator, true), shader_name(settings.integrator, true));
+}
+
+void ComputeReference::make_pipeline(std::span<const std::uint32_t> shader, const std::string& name)
+{
     m_film.fill_zero();
     m_scene.bind(m_set);
     m_set.bind(GC_VK_BINDING_FILM, m_film);
-    m_layout = make_pipeline_layout(context, m_set, sizeof(std::uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
-    m_pipeline = make_compute_pipeline(context, m_layout.get(), shader_for(settings.integrator),
-                                       std::string(integrator_name(settings.integrator)) + ".comp");
+    m_layout = make_pipeline_layout(m_context, m_set, sizeof(std::uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
+    m_pipeline = make_compute_pipeline(m_context, m_layout.get(), shader, name);
 }
 
 void ComputeReference::render_sample()

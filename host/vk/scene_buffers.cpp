@@ -16,11 +16,13 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 }  // namespace
 
 SceneBuffers SceneBuffers::upload(const Context& context, const Scene& scene, const FlatBvh* bvh, const Camera& camera,
-                                  const RenderSettings& settings, const EnvironmentMap* environment)
+                                  const RenderSettings& settings, const EnvironmentMap* environment,
+                                  std::uint32_t first_emitter)
 {
     const EnvironmentMap none;
     const EnvironmentMap& env = environment ? *environment : none;
     const DeviceTextures tex = make_textures(scene);
+    const std::vector<dev::GcEmitter> emitters = make_emitters(scene, first_emitter);
     std::vector<glm::vec4> positions;
     positions.reserve(scene.positions.size());
     for (const Point3& p : scene.positions) positions.emplace_back(p.x, p.y, p.z, 1.0f);
@@ -33,14 +35,14 @@ SceneBuffers SceneBuffers::upload(const Context& context, const Scene& scene, co
         Buffer::with_data(context, make_materials(scene), kStorage, "materials"),
         Buffer::with_data(context, tex.textures, kStorage, "textures"),
         Buffer::with_data(context, tex.texels, kStorage, "texels"),
-        Buffer::with_data(context, make_emitters(scene), kStorage, "emitters"),
+        Buffer::with_data(context, emitters, kStorage, "emitters"),
         Buffer::with_data(context, positions, kStorage, "vertex positions"),
         Buffer::with_data(context, std::span<const float>(dev::gc_srgb_to_linear_table), kStorage, "sRGB table"),
         Buffer::with_data(context, make_point_lights(scene), kStorage, "point lights"),
         Buffer::with_data(context, env.pixels, kStorage, "environment map"),
         Buffer::with_data(context, env.marginal_cdf, kStorage, "environment marginal cdf"),
         Buffer::with_data(context, env.conditional_cdf, kStorage, "environment conditional cdf"),
-        make_render_params(scene, camera, settings),
+        make_render_params(summarize(scene, emitters, tex.textures.size()), camera, settings),
     };
     if (environment) set_environment_map(b.host_params, settings, env.width, env.height);
     b.params.write(&b.host_params, sizeof b.host_params);

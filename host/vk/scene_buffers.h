@@ -37,9 +37,12 @@ struct SceneBuffers {
     // `bvh` and `environment` may be null for passes that trace no rays (the raster pass): the
     // node, triangle and environment buffers are then left empty, and the parameters keep the
     // constant env_radiance. `environment` is the map of settings.env_map_path
-    // (load_environment_map), set in the parameters as the OpenCL renderer sets it.
+    // (load_environment_map), set in the parameters as the OpenCL renderer sets it. Emitters
+    // are the scene's triangles from `first_emitter` on (an instanced scene's world emitters
+    // follow its meshes: with_world_emitters), as DeviceScene lists them.
     static SceneBuffers upload(const Context& context, const Scene& scene, const FlatBvh* bvh, const Camera& camera,
-                               const RenderSettings& settings, const EnvironmentMap* environment = nullptr);
+                               const RenderSettings& settings, const EnvironmentMap* environment = nullptr,
+                               std::uint32_t first_emitter = 0);
 
     // Binds every scene buffer of `set` (all but the film).
     void bind(StorageBufferSet& set) const;

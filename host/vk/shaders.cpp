@@ -22,6 +22,12 @@ constexpr std::uint32_t kWhittedComp[] =
 constexpr std::uint32_t kAovInstancesComp[] =
 #include "aov_instances.comp.inc"
     ;
+constexpr std::uint32_t kPathInstancesComp[] =
+#include "path_instances.comp.inc"
+    ;
+constexpr std::uint32_t kWhittedInstancesComp[] =
+#include "whitted_instances.comp.inc"
+    ;
 
 }  // namespace
 
@@ -31,5 +37,7 @@ std::span<const std::uint32_t> aov_comp() { return kAovComp; }
 std::span<const std::uint32_t> path_comp() { return kPathComp; }
 std::span<const std::uint32_t> whitted_comp() { return kWhittedComp; }
 std::span<const std::uint32_t> aov_instances_comp() { return kAovInstancesComp; }
+std::span<const std::uint32_t> path_instances_comp() { return kPathInstancesComp; }
+std::span<const std::uint32_t> whitted_instances_comp() { return kWhittedInstancesComp; }
 
 }  // namespace gc::vk::shaders

@@ -13,5 +13,7 @@ std::span<const std::uint32_t> aov_comp();
 std::span<const std::uint32_t> path_comp();
 std::span<const std::uint32_t> whitted_comp();
 std::span<const std::uint32_t> aov_instances_comp();
+std::span<const std::uint32_t> path_instances_comp();     // path.comp, GC_SCENE_INSTANCED
+std::span<const std::uint32_t> whitted_instances_comp();  // whitted.comp, GC_SCENE_INSTANCED
 
 }  // namespace gc::vk::shaders

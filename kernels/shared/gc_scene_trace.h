@@ -17,13 +17,13 @@
  *   GC_INSTANCES_FIRST_UNUSED()  marks the instance buffers used, in a kernel that only shades
  *
  * Like the element accessors (GC_ATTRIB, gc_scene_buffers.h), these read the enclosing
- * function's buffer parameters by name. A flat program's code is the plain traversal's.
- * GLSL (the Vulkan reference) renders flat scenes only.
+ * function's buffer parameters by name (GLSL: the SSBOs of kernels/vk/scene_bindings.glsl and,
+ * instanced, instances.glsl). A flat program's code is the plain traversal's.
  */
 #ifndef GC_SCENE_TRACE_H
 #define GC_SCENE_TRACE_H
 
-#if defined(GC_SCENE_INSTANCED) && !defined(GC_GLSL)
+#if defined(GC_SCENE_INSTANCED)
 
 #include "gc_instance_attribs.h"
 #include "gc_traverse_instances.h"

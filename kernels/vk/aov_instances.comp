@@ -1,31 +1,12 @@
 /*
  * aov_instances.comp — Vulkan compute reference of kernels/aov_instances.cl: first-hit AOVs
- * of an instanced scene through the two-level BVH (gc_traverse_instances.h). The bottom
- * trees of every mesh share the NODES and TRIS bindings; GLSL has no pointers to offset, so
- * the accessors add the hit instance's bases, which gc_use_mesh sets before each descent.
+ * of an instanced scene through the two-level BVH (gc_traverse_instances.h; the bindings and
+ * accessors of instances.glsl).
  */
 #version 450
 #define GC_VK_COMPUTE 1
 #include "scene_bindings.glsl"
-#include "gc_instance.h"
-
-layout(std430, set = 0, binding = GC_VK_BINDING_TLAS) readonly buffer TlasBuffer { GcBvhNode gc_tlas_nodes[]; };
-layout(std430, set = 0, binding = GC_VK_BINDING_INSTANCES) readonly buffer InstanceBuffer { GcInstance gc_instances[]; };
-
-uint gc_mesh_node_base = 0u;
-uint gc_mesh_tri_base = 0u;
-#undef GC_BVH_NODE
-#undef GC_BVH_TRI
-#define GC_BVH_NODE(i) bvh_nodes[gc_mesh_node_base + (i)]
-#define GC_BVH_TRI(i) bvh_tris[gc_mesh_tri_base + (i)]
-
-uint gc_use_mesh(GcInstance inst)
-{
-    gc_mesh_node_base = inst.node_base;
-    gc_mesh_tri_base = inst.tri_base;
-    return 0u;
-}
-
+#include "instances.glsl"
 #include "gc_aov_instance.h"
 #include "gc_traverse_instances.h"
 

@@ -4,12 +4,17 @@
  * (kernels/shade.cl) with the same random-number keying (gc_rng.h: pixel, sample index,
  * block, seed), so both make the same decisions. The order of operations on a path's
  * radiance is the wavefront's: a vertex's emission, then its shadow ray's contribution.
- * The film sum runs in sample order, as accumulate.cl's does.
+ * The film sum runs in sample order, as accumulate.cl's does. Built a second time with
+ * GC_SCENE_INSTANCED for instanced scenes: the two-level BVH of instances.glsl, traced and
+ * shaded through gc_scene_trace.h as megakernel.cl does.
  */
 #version 450
 #define GC_VK_COMPUTE 1
 #include "scene_bindings.glsl"
-#include "gc_traverse.h"
+#ifdef GC_SCENE_INSTANCED
+#include "instances.glsl"
+#endif
+#include "gc_scene_trace.h"
 #include "gc_path_vertex.h"
 #include "gc_camera.h"
 
@@ -32,10 +37,10 @@ void main()
 
     /* extend -> shade -> shadow until the path ends (at most max_depth vertices). */
     for (;;) {
-        const GcHit hit = gc_trace_closest(GC_BVH_ARGS, ray);
-        const GcVertexResult res = gc_shade_vertex(GC_SHADE_ARGS, params, path, ray, hit);
+        const GcSceneHit hit = gc_scene_closest(ray);
+        const GcVertexResult res = gc_shade_scene_vertex(params, path, ray, hit);
         path = res.path;
-        if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_trace_any(GC_BVH_ARGS, res.shadow.ray))
+        if ((res.flags & GC_VERTEX_SHADOW) != 0u && !gc_scene_occluded(res.shadow.ray))
             path.radiance += res.shadow.contribution;
         if ((res.flags & GC_VERTEX_CONTINUE) == 0u) break;
         ray = res.next;

@@ -1,7 +1,11 @@
-// The Vulkan reference of the instanced first-hit AOVs (kernels/vk/aov_instances.comp) against
-// the OpenCL kernel (kernels/aov_instances.cl) on the lattice scene. Metric: the largest
-// absolute difference of any channel of any pixel, printed; it must be 0 (same operations
-// on both sides, contraction off on both: see docs/design.md, rule 4).
+// The Vulkan reference on instanced scenes against OpenCL:
+//  - the first-hit AOVs (kernels/vk/aov_instances.comp against kernels/aov_instances.cl) on the
+//    lattice scene. Metric: the largest absolute difference of any channel of any pixel,
+//    printed; it must be 0 (same operations on both sides, contraction off on both: see
+//    docs/design.md, rule 4);
+//  - the path and Whitted integrators (path.comp and whitted.comp built with
+//    GC_SCENE_INSTANCED) on a glTF that reuses its meshes, area light included. Metric: the
+//    fraction of bit-identical pixels, printed; the cross-check's strict limits must hold.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,14 +15,20 @@
 #include "../bvh/instance_scenes.h"
 #include "../render/instanced_aov_render.h"
 #include "host/bvh/bvh.h"
+#include "host/image/compare.h"
 #include "host/render/scene_convert.h"
+#include "host/render/session.h"
+#include "host/vk/agreement.h"
+#include "host/vk/compute_reference.h"
 #include "host/vk/instanced_aov.h"
+#include "tests/cl/cl_test_util.h"
+#include "tests/render/reused_meshes_gltf.h"
 #include "vk_test_util.h"
 
 namespace gc::vk {
 namespace {
 
-class InstancedAovCrossCheck : public VkDeviceTest {
+class InstancedCrossCheck : public VkDeviceTest {
 protected:
     void SetUp() override
     {
@@ -64,7 +74,7 @@ void expect_vulkan_equals_opencl(Context& context, cl::Context& cl_context, cons
     }
 }
 
-TEST_F(InstancedAovCrossCheck, VulkanEqualsOpenCl)
+TEST_F(InstancedCrossCheck, AovsEqualOpenCl)
 {
     Camera lattice;
     lattice.look_from = Point3(-4.0f, 11.0f, -6.0f);
@@ -76,6 +86,42 @@ TEST_F(InstancedAovCrossCheck, VulkanEqualsOpenCl)
     rotated.look_at = Point3(0.0f, 0.0f, 0.0f);
     rotated.vfov_degrees = 60.0f;
     expect_vulkan_equals_opencl(*context, *cl_context, test::rotated_instances(40, 3), "rotated", rotated);
+}
+
+TEST_F(InstancedCrossCheck, PathAndWhittedEqualOpenCl)
+{
+    cl::test::TempDir dir;
+    SceneRequest request;
+    request.path = test::write_reused_meshes_gltf(dir.path());
+    request.keep_instances = true;
+    request.camera.look_from = Point3(0.5f, 3.2f, 6.5f);
+    request.camera.look_at = Point3(0.0f, 0.6f, 0.0f);
+    request.camera.fov = 45.0f;
+    const PreparedScene prepared = prepare_scene(request);
+    ASSERT_TRUE(prepared.instances);
+    const InstancedBvh bvh = assemble_binary(prepared.instances->bvh);
+    for (const IntegratorKind integrator : {IntegratorKind::Path, IntegratorKind::Whitted}) {
+        RenderSettings settings;
+        settings.width = 48;
+        settings.height = 36;
+        settings.spp = 4;
+        settings.max_depth = 5;
+        settings.seed = 2;
+        settings.integrator = integrator;
+        Session session(cl_context->device(), prepared, settings, {});
+        session.render();
+        ASSERT_TRUE(session.device_scene().instanced());
+        const Film cl_film = session.renderer().film();
+        ComputeReference reference(*context, prepared.instances->scene, bvh, prepared.camera, settings);
+        while (reference.samples_done() < settings.spp) reference.render_sample();
+        const ImageDifference d = compare_images(reference.film(), cl_film, Tolerances{}.radiance.pixel);
+        const AgreementLimits strict;
+        std::printf("[instanced %s, Vulkan vs OpenCL] mean %.4g, rel MSE %.3g, %.3f %% of pixels bit-identical\n",
+                    integrator_name(integrator), d.mean_ref, d.rel_mse, 100.0 * d.identical);
+        const AgreementVerdict v = judge_agreement(d, strict);
+        EXPECT_TRUE(v.passed()) << integrator_name(integrator) << ": " << v.why;
+        EXPECT_GT(d.identical, 0.999) << integrator_name(integrator);
+    }
 }
 
 }  // namespace
