@@ -70,9 +70,17 @@ ExitCode run_cross_check(const Options& options)
     const cl::Context cl_context(device);
     const vk::Context vk_context(options.vk_device);
     log_info("OpenCL: " + device.device_name + " (" + device.platform_name + "); Vulkan: " + vk_context.description());
-    const vk::CrossCheckReport report = vk::cross_check(cl_context, vk_context, prepared.scene, prepared.bvh,
-                                                        prepared.camera, settings,
-                                                        render_setup_from_environment());
+    const RenderSetup setup = render_setup_from_environment();
+    vk::CrossCheckReport report =
+        vk::cross_check(cl_context, vk_context, prepared.scene, prepared.bvh, prepared.camera, settings, setup);
+    // A file that reuses meshes renders as instances (render_command.cpp): check that form too.
+    if (!options.flatten_instances) {
+        SceneRequest request = scene_request(options);
+        request.keep_instances = true;
+        const PreparedScene instanced = prepare_scene(request);
+        if (instanced.instances)
+            vk::add_instanced(report, cl_context, vk_context, *instanced.instances, prepared.camera, settings, setup);
+    }
     std::fputs(report.format().c_str(), stdout);
     const bool ok = report.passed();
     std::puts(ok ? "cross-check passed" : "cross-check FAILED: OpenCL and Vulkan disagree beyond tolerance");

@@ -36,20 +36,25 @@ Film render_cl(const cl::Context& context, const RenderSetup& setup, const std::
     return renderer.film();
 }
 
-Film render_vk(const Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
-               const RenderSettings& settings, std::uint32_t spp, double* seconds = nullptr)
+Film render_vk(ComputeReference& reference, std::uint32_t spp, double* seconds = nullptr)
 {
-    ComputeReference reference(context, scene, bvh, camera, settings);
     const auto t0 = Clock::now();
     while (reference.samples_done() < spp) reference.render_sample();
     if (seconds) *seconds = seconds_since(t0);
     return reference.film();
 }
 
+Film render_vk(const Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
+               const RenderSettings& settings, std::uint32_t spp, double* seconds = nullptr)
+{
+    ComputeReference reference(context, scene, bvh, camera, settings);
+    return render_vk(reference, spp, seconds);
+}
+
 std::string line(const char* label, const std::string& value, bool ok)
 {
     char buffer[256];
-    std::snprintf(buffer, sizeof buffer, "  %-48s %-24s %s\n", label, value.c_str(), ok ? "ok" : "FAIL");
+    std::snprintf(buffer, sizeof buffer, "  %-52s %-24s %s\n", label, value.c_str(), ok ? "ok" : "FAIL");
     return buffer;
 }
 
@@ -97,7 +102,9 @@ bool CrossCheckReport::passed(const Tolerances& tol) const
     return raster.id_agreement >= tol.min_id_agreement && raster.max_depth_rel_error <= tol.max_depth_rel_error &&
            compute_aov.id_agreement >= tol.min_id_agreement &&
            compute_aov.max_depth_rel_error <= tol.max_depth_rel_error &&
-           judge_agreement(path, tol.radiance).passed() && judge_agreement(whitted, tol.radiance).passed();
+           judge_agreement(path, tol.radiance).passed() && judge_agreement(whitted, tol.radiance).passed() &&
+           (!instanced || (judge_agreement(instanced_path, tol.radiance).passed() &&
+                           judge_agreement(instanced_whitted, tol.radiance).passed()));
 }
 
 std::string CrossCheckReport::format(const Tolerances& tol) const
@@ -119,6 +126,10 @@ std::string CrossCheckReport::format(const Tolerances& tol) const
               compute_aov.max_depth_rel_error <= tol.max_depth_rel_error);
     s += radiance_lines("path", path, tol);
     s += radiance_lines("whitted", whitted, tol);
+    if (instanced) {
+        s += radiance_lines("instanced path", instanced_path, tol);
+        s += radiance_lines("instanced whitted", instanced_whitted, tol);
+    }
     s += "  time: Vulkan raster " + num("%.3f", raster_seconds) + " s/frame; s/spp Vulkan compute path " +
          num("%.3f", vk_path_seconds_per_spp) + ", OpenCL path " + num("%.3f", cl_path_seconds_per_spp) +
          ", Vulkan compute whitted " + num("%.3f", vk_whitted_seconds_per_spp) + ", OpenCL whitted " +
@@ -166,6 +177,25 @@ CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_co
     report.whitted = compare_integrator(cl_context, setup, cl_scene, vk_context, scene, bvh, camera, settings, IntegratorKind::Whitted,
                                         report.cl_whitted_seconds_per_spp, report.vk_whitted_seconds_per_spp);
     return report;
+}
+
+void add_instanced(CrossCheckReport& report, const cl::Context& cl_context, const Context& vk_context,
+                   const PreparedInstances& instances, const Camera& camera, const RenderSettings& settings,
+                   const RenderSetup& setup)
+{
+    const auto cl_scene = std::make_shared<const DeviceScene>(DeviceScene::upload_instanced(
+        cl_context, instances.scene, instances.bvh, load_environment_map(settings), setup.tuning));
+    const InstancedBvh bvh = assemble_binary(instances.bvh);
+    for (const IntegratorKind integrator : {IntegratorKind::Path, IntegratorKind::Whitted}) {
+        RenderSettings s = settings;
+        s.integrator = integrator;
+        const Film cl_film = render_cl(cl_context, setup, cl_scene, camera, s, settings.spp);
+        ComputeReference reference(vk_context, instances.scene, bvh, camera, s);
+        const Film vk_film = render_vk(reference, settings.spp);
+        (integrator == IntegratorKind::Path ? report.instanced_path : report.instanced_whitted) =
+            compare_images(vk_film, cl_film, Tolerances{}.radiance.pixel);
+    }
+    report.instanced = true;
 }
 
 }  // namespace gc::vk

@@ -4,7 +4,8 @@
 //   - raster primitive id and depth (Vulkan mesh pass) vs the OpenCL ray-cast AOVs;
 //   - the same for the Vulkan compute AOVs (same traversal code: should agree everywhere);
 //   - Vulkan compute radiance vs OpenCL radiance, for each integrator that makes light: the
-//     path tracer and the Whitted ray tracer.
+//     path tracer and the Whitted ray tracer; for a file that reuses meshes, also with the
+//     meshes kept as instances on both sides (add_instanced).
 #pragma once
 
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include "host/cl/context.h"
 #include "host/render/render_setup.h"
 #include "host/render/render_settings.h"
+#include "host/render/session.h"
 #include "host/scene/scene.h"
 #include "host/vk/agreement.h"
 #include "host/vk/context.h"
@@ -33,6 +35,9 @@ struct CrossCheckReport {
     double cl_path_seconds_per_spp = 0.0;
     double vk_whitted_seconds_per_spp = 0.0;
     double cl_whitted_seconds_per_spp = 0.0;
+    bool instanced = false;            // add_instanced ran: the two below are set
+    ImageDifference instanced_path;    // path.comp vs the OpenCL path tracer, both instanced
+    ImageDifference instanced_whitted; // whitted.comp vs whitted.cl, both instanced
 
     bool passed(const Tolerances& tol = {}) const;
     // Human-readable figures, one per line, each marked ok / FAIL against `tol`.
@@ -44,5 +49,11 @@ struct CrossCheckReport {
 CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_context, const Scene& scene,
                              const FlatBvh& bvh, const Camera& camera, const RenderSettings& settings,
                              const RenderSetup& setup = {});
+
+// The path and Whitted checks again on the scene's instanced form (the two-level BVH on both
+// sides: DeviceScene::upload_instanced, kernels/vk/instances.glsl), into report.instanced_*.
+void add_instanced(CrossCheckReport& report, const cl::Context& cl_context, const Context& vk_context,
+                   const PreparedInstances& instances, const Camera& camera, const RenderSettings& settings,
+                   const RenderSetup& setup = {});
 
 }  // namespace gc::vk

@@ -18,6 +18,7 @@
 #include "host/image/compare.h"
 #include "host/render/scene_convert.h"
 #include "host/render/session.h"
+#include "host/vk/cross_check.h"
 #include "host/vk/agreement.h"
 #include "host/vk/compute_reference.h"
 #include "host/vk/instanced_aov.h"
@@ -99,28 +100,24 @@ TEST_F(InstancedCrossCheck, PathAndWhittedEqualOpenCl)
     request.camera.fov = 45.0f;
     const PreparedScene prepared = prepare_scene(request);
     ASSERT_TRUE(prepared.instances);
-    const InstancedBvh bvh = assemble_binary(prepared.instances->bvh);
-    for (const IntegratorKind integrator : {IntegratorKind::Path, IntegratorKind::Whitted}) {
-        RenderSettings settings;
-        settings.width = 48;
-        settings.height = 36;
-        settings.spp = 4;
-        settings.max_depth = 5;
-        settings.seed = 2;
-        settings.integrator = integrator;
-        Session session(cl_context->device(), prepared, settings, {});
-        session.render();
-        ASSERT_TRUE(session.device_scene().instanced());
-        const Film cl_film = session.renderer().film();
-        ComputeReference reference(*context, prepared.instances->scene, bvh, prepared.camera, settings);
-        while (reference.samples_done() < settings.spp) reference.render_sample();
-        const ImageDifference d = compare_images(reference.film(), cl_film, Tolerances{}.radiance.pixel);
-        const AgreementLimits strict;
+    RenderSettings settings;
+    settings.width = 48;
+    settings.height = 36;
+    settings.spp = 4;
+    settings.max_depth = 5;
+    settings.seed = 2;
+    // What `--cross-check vulkan` adds for a file that reuses meshes.
+    CrossCheckReport report;
+    add_instanced(report, *cl_context, *context, *prepared.instances, prepared.camera, settings);
+    ASSERT_TRUE(report.instanced);
+    const AgreementLimits strict;
+    for (const auto& [integrator, d] :
+         {std::pair{"path", &report.instanced_path}, std::pair{"whitted", &report.instanced_whitted}}) {
         std::printf("[instanced %s, Vulkan vs OpenCL] mean %.4g, rel MSE %.3g, %.3f %% of pixels bit-identical\n",
-                    integrator_name(integrator), d.mean_ref, d.rel_mse, 100.0 * d.identical);
-        const AgreementVerdict v = judge_agreement(d, strict);
-        EXPECT_TRUE(v.passed()) << integrator_name(integrator) << ": " << v.why;
-        EXPECT_GT(d.identical, 0.999) << integrator_name(integrator);
+                    integrator, d->mean_ref, d->rel_mse, 100.0 * d->identical);
+        const AgreementVerdict v = judge_agreement(*d, strict);
+        EXPECT_TRUE(v.passed()) << integrator << ": " << v.why;
+        EXPECT_GT(d->identical, 0.999) << integrator;
     }
 }
 
