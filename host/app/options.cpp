@@ -306,8 +306,8 @@ Rendering:
       --max-depth N        path segments: 1 = emitters only, 2 = direct light (default 8)
       --rr-depth N         Russian roulette from this depth on (default 5)
       --seed N             random seed (default 0); same seed, same image
-      --sampler NAME       independent (default) | sobol: Owen-scrambled Sobol points,
-                           less noise at the same spp (best at powers of two)
+      --sampler NAME       sobol (default: Owen-scrambled Sobol points, least noise at
+                           powers of two spp) | independent (hashed random numbers)
       --env R,G,B|FILE     constant environment radiance (default 0,0,0), or a lat-long
                            map (.exr/.hdr/.pfm; +Y up), importance sampled
       --env-scale R,G,B    multiplies the environment map (default 1,1,1)

@@ -13,8 +13,9 @@ namespace gc {
 
 enum class IntegratorKind { Aov, Path, Whitted };
 enum class AovKind { Preview, Albedo, Normal, Depth, PrimitiveId, GuideAlbedo, GuideNormal };
-// Where a sample's random numbers come from (kernels/shared/gc_rng.h): independent hashes, or
-// Owen-scrambled Sobol points (lower error at the same spp; docs/decisions/sobol-sampler.md).
+// Where a sample's random numbers come from (kernels/shared/gc_rng.h): Owen-scrambled Sobol
+// points (the default: lower error at the same spp; docs/decisions/sobol-sampler.md), or
+// independent hashes.
 enum class SamplerKind { Independent, Sobol };
 
 struct RenderSettings {
@@ -22,7 +23,7 @@ struct RenderSettings {
     int height = 512;
     std::uint32_t spp = 64;
     std::uint32_t seed = 0;
-    SamplerKind sampler = SamplerKind::Independent;
+    SamplerKind sampler = SamplerKind::Sobol;
     std::uint32_t max_depth = 8;       // path segments (Mitsuba's convention): 1 = emitters only
     std::uint32_t rr_depth = 5;        // Russian roulette from this depth on
     double time_limit_seconds = 0.0;   // 0 = none; otherwise stop after the pass that crosses it

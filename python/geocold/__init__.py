@@ -418,9 +418,9 @@ class Renderer:
     ``"depth"``, ``"primid"``. ``res``: (width, height). ``spp``: the samples
     :meth:`render` adds by default (64; 1 for AOVs, as in the CLI). ``env``: a constant
     environment radiance, or the scale of ``env_map`` (a lat-long .exr/.hdr/.pfm).
-    ``sampler``: ``"independent"`` or ``"sobol"`` (Owen-scrambled Sobol points: less noise at
-    the same spp, as ``--sampler sobol``). ``samples_per_pass`` and ``wavefront_size`` change
-    only the speed.
+    ``sampler``: ``"sobol"`` (the default: Owen-scrambled Sobol points, as the CLI) or
+    ``"independent"`` (``--sampler independent``). ``samples_per_pass`` and
+    ``wavefront_size`` change only the speed.
 
     Construction uploads the scene to the device and builds (or loads from the cache) the
     kernels. Raises :class:`DeviceError` for a device that does not exist,
@@ -430,7 +430,7 @@ class Renderer:
                  aov: Optional[str] = None, res: Tuple[int, int] = (512, 512), max_depth: int = 8,
                  seed: int = 0, spp: Optional[int] = None, rr_depth: int = 5,
                  env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
-                 samples_per_pass: int = 0, wavefront_size: int = 0, sampler: str = "independent"):
+                 samples_per_pass: int = 0, wavefront_size: int = 0, sampler: str = "sobol"):
         if not isinstance(scene, Scene):
             raise ArgumentError(f"Renderer: scene must be a geocold.Scene (from geocold.load), "
                                 f"not {type(scene).__name__}")
@@ -565,7 +565,7 @@ def render_frame(scene: Scene, devices: Union[str, list] = "all", spp: int = 64,
                  max_depth: int = 8, seed: int = 0, rr_depth: int = 5,
                  env: Union[float, Vec3] = (0.0, 0.0, 0.0), env_map: Optional[str] = None,
                  time_limit: float = 0.0, noise_threshold: float = 0.0,
-                 sampler: str = "independent") -> Tuple[Any, int]:
+                 sampler: str = "sobol") -> Tuple[Any, int]:
     """Renders one frame on several devices at once, as ``geocold-cl --device all``.
 
     ``devices``: ``"all"``, or a list of device specs (as :class:`Renderer`'s ``device``). The

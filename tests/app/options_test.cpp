@@ -36,7 +36,7 @@ TEST(Options, Defaults)
     EXPECT_EQ(o.render.max_depth, 8u);
     EXPECT_EQ(o.threads, 0);
     EXPECT_EQ(o.render.samples_per_pass, 0u);  // planned by the renderer
-    EXPECT_EQ(o.render.sampler, SamplerKind::Independent);
+    EXPECT_EQ(o.render.sampler, SamplerKind::Sobol);
     EXPECT_TRUE(o.output_path.empty());
 }
 
@@ -46,7 +46,7 @@ TEST(Options, EveryOptionParses)
                              "--max-depth", "4", "--rr-depth", "2", "--time-limit", "1.5", "--res", "64x32",
                              "--env", "1,0.5,0.25", "--look-from", "0,1,4", "--look-at", "0,1,0", "--up", "0,1,0",
                              "--fov", "45", "--gltf-scene", "2", "--quiet", "--threads", "3", "--wavefront-size", "4096",
-                             "--samples-per-pass", "5", "--sampler", "sobol", "scene.glb"});
+                             "--samples-per-pass", "5", "--sampler", "independent", "scene.glb"});
     EXPECT_EQ(o.device, "gpu");
     EXPECT_EQ(o.output_path, "x.exr");
     EXPECT_EQ(o.render.integrator, IntegratorKind::Whitted);
@@ -57,7 +57,7 @@ TEST(Options, EveryOptionParses)
     EXPECT_EQ(o.render.rr_depth, 2u);
     EXPECT_EQ(o.render.wavefront_size, 4096u);
     EXPECT_EQ(o.render.samples_per_pass, 5u);
-    EXPECT_EQ(o.render.sampler, SamplerKind::Sobol);
+    EXPECT_EQ(o.render.sampler, SamplerKind::Independent);
     EXPECT_DOUBLE_EQ(o.render.time_limit_seconds, 1.5);
     EXPECT_EQ(o.render.width, 64);
     EXPECT_EQ(o.render.height, 32);

@@ -24,7 +24,7 @@ def read_pfm(path):
 
 @pytest.mark.parametrize("integrator,extra,kwargs", [("path", [], {}), ("whitted", [], {}),
                                                      ("aov", ["--aov", "albedo"], {"aov": "albedo"}),
-                                                     ("path", ["--sampler", "sobol"], {"sampler": "sobol"})])
+                                                     ("path", ["--sampler", "independent"], {"sampler": "independent"})])
 def test_render_equals_cli_bit_for_bit(gc, cornell, device, cli, tmp_path, integrator, extra, kwargs):
     spp = 1 if integrator == "aov" else 8
     out = tmp_path / "cli.pfm"

@@ -77,6 +77,7 @@ TEST(FrameHash, TheLensChangesTheOptionsHash)
 TEST(FrameHash, TheSamplerChangesTheOptionsHash)
 {
     RenderSettings settings;
+    settings.sampler = SamplerKind::Independent;
     const Camera camera;
     const std::uint64_t independent = render_options_hash(settings, camera, 64);
     settings.sampler = SamplerKind::Sobol;

@@ -40,6 +40,9 @@ struct HashCase {
     AovKind aov;
     PathKernelForm form;
     bool point_light_and_env_map;
+    // The hashes taken before the library core drew independent samples; the Sobol sampler
+    // (the default since) has cases of its own.
+    SamplerKind sampler = SamplerKind::Independent;
 };
 
 constexpr HashCase kCases[] = {
@@ -69,6 +72,12 @@ constexpr HashCase kCases[] = {
      PathKernelForm::Auto, false},
     {"sphere-aov-primid", "scenes/cornell-box/CornellBox-Sphere.obj", IntegratorKind::Aov, AovKind::PrimitiveId,
      PathKernelForm::Auto, false},
+    {"original-path-megakernel-sobol", "scenes/cornell-box/CornellBox-Original.obj", IntegratorKind::Path,
+     AovKind::Preview, PathKernelForm::Megakernel, false, SamplerKind::Sobol},
+    {"original-path-wavefront-sobol", "scenes/cornell-box/CornellBox-Original.obj", IntegratorKind::Path,
+     AovKind::Preview, PathKernelForm::Wavefront, false, SamplerKind::Sobol},
+    {"mirror-env-whitted-sobol", "scenes/cornell-box/CornellBox-Mirror.obj", IntegratorKind::Whitted,
+     AovKind::Preview, PathKernelForm::Auto, true, SamplerKind::Sobol},
 };
 
 // FNV-1a over the pixels' float bits, row by row.
@@ -116,6 +125,7 @@ Film render_case(const cl::Context& context, const HashCase& c, const fs::path& 
     settings.seed = 7;
     settings.integrator = c.integrator;
     settings.aov = c.aov;
+    settings.sampler = c.sampler;
     if (c.point_light_and_env_map) {
         scene.point_lights.push_back({Point3(0.3f, 1.5f, 0.5f), glm::vec3(0.8f, 0.6f, 0.4f)});
         settings.env_map_path = env_map.string();

@@ -131,7 +131,9 @@ TEST_F(WhittedTest, PointLitLambertPlaneMatchesAnalytic)
     const std::uint32_t px = 1, py = 1, pixel = py * 3 + px;
     glm::dvec3 expected(0.0);
     for (std::uint32_t s = 0; s < settings.spp; ++s) {
-        const dev::float4 j = dev::gc_rand4(pixel, s, GC_RNG_BLOCK_CAMERA, settings.seed);
+        const dev::float4 j = settings.sampler == SamplerKind::Sobol
+                                  ? dev::gc_sobol_rand4(pixel, s, GC_RNG_BLOCK_CAMERA, settings.seed)
+                                  : dev::gc_rand4(pixel, s, GC_RNG_BLOCK_CAMERA, settings.seed);
         const dev::GcRay ray = dev::gc_camera_ray(cam, 3, 3, px, py, j.x, j.y);
         const glm::dvec3 o(ray.org_tmin.x, ray.org_tmin.y, ray.org_tmin.z);
         const glm::dvec3 d(ray.dir_tmax.x, ray.dir_tmax.y, ray.dir_tmax.z);

@@ -184,6 +184,7 @@ RenderSettings settings_for(const BenchScene& s, Size size, int depth)
     r.rr_depth = static_cast<std::uint32_t>(depth + 1);  // no Russian roulette, as Mitsuba is run
     r.env_radiance = s.env;
     r.seed = 0;
+    r.sampler = SamplerKind::Independent;  // as Mitsuba's prb is run (its independent sampler)
     return r;
 }
 

@@ -58,6 +58,8 @@ void measure_paths(const BenchScene& s, const Options& o, std::vector<DeviceSlot
     settings.env_radiance = s.env;
     settings.wavefront_size = static_cast<std::uint32_t>(o.wavefront);
     settings.samples_per_pass = static_cast<std::uint32_t>(o.samples_per_pass);
+    // Samples per second against the yardsticks', which draw independent samples.
+    settings.sampler = SamplerKind::Independent;
     for (DeviceSlot& d : devices) {
         // A CPU times --repeats passes of its steady size (up to PassPlanner::kMaxSamples).
         const int samples =
