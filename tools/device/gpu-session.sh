@@ -40,6 +40,14 @@ for round in 1 2 3; do
     done
 done
 step "sampler cost rc=$?"
+# Issue 43's textured-adjoint fault: is it the adjoint, or any one-kernel path (the adjoint's
+# form) with textures on NVIDIA? The megakernel forced on the GPU, textured and not.
+for s in tests/data/scenes/box-textured/BoxTextured.gltf scenes/cornell-box/CornellBox-Original.obj; do
+    GEOCOLD_PATH_KERNEL=megakernel timeout 30 build/bare/geocold-cl "$s" --device gpu --res 64x64 --spp 4 \
+        --env 1,1,1 -o /tmp/mk.pfm > /tmp/mk.log 2>&1
+    echo "megakernel on the GPU, $(basename "$s"): rc=$? $(tail -1 /tmp/mk.log)" >> "$OUT/megakernel-gpu.log"
+done
+step "megakernel on the GPU: $(tr '\n' ' ' < "$OUT/megakernel-gpu.log")"
 if [ "$(left)" -gt 30 ]; then
     GEOCOLD_GRAD_REPEATS=3 timeout "$(left)" tools/device/gradients.sh > /dev/null 2>&1
     step "gradients rc=$?"
