@@ -1,5 +1,5 @@
-// The Vulkan reference of kernels/aov_instances.cl: one sample of first-hit AOVs of an
-// instanced scene (kernels/vk/aov_instances.comp), for cross-checking the OpenCL kernel.
+// One sample of first-hit AOVs of an instanced scene in the Vulkan reference (aov.comp built
+// with GC_SCENE_INSTANCED), for cross-checking kernels/aov.cl on the same scene.
 #pragma once
 
 #include "host/bvh/instance_bvh.h"

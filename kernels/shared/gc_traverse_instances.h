@@ -3,7 +3,7 @@
  * affine copy of a mesh whose own bottom-level BVH is traversed in the device's layout
  * (gc_traverse.h picks BVH2, BVH4 or BVH8 by the program's options). Shared dialect of gc_platform.h for OpenCL C
  * and C++, and GLSL, where the bottom trees are offset by bases in the accessors instead of
- * by pointer arithmetic (kernels/vk/aov_instances.comp).
+ * by pointer arithmetic (kernels/vk/instances.glsl).
  *
  * Buffers (host/bvh/instance_bvh.h builds them):
  *   - gc_tlas_nodes: GcBvhNode[] over the instances' world bounds; a leaf's first/count index
@@ -45,7 +45,7 @@ GC_FUNC GcHit gc_trace_mesh(GC_BVH_PARAMS, GcRay ray, bool any_hit)
 
 #if defined(GC_GLSL)
 /* GLSL: the buffers are the SSBOs gc_tlas_nodes and gc_instances, and the shader's
- * GC_BVH_NODE / GC_BVH_TRI add the bases that gc_use_mesh(inst) sets (aov_instances.comp). */
+ * GC_BVH_NODE / GC_BVH_TRI add the bases that gc_use_mesh(inst) sets (kernels/vk/instances.glsl). */
 #define GC_MESH_ARGS(inst) gc_use_mesh(inst)
 #define GC_INSTANCE_PARAMS uint gc_instance_unused
 #define GC_INSTANCE_ARGS 0u

@@ -21,8 +21,8 @@
 #define GC_VK_BINDING_ENV_MARGINAL 13    /* float[] its rows' cdf (environment.h) */
 #define GC_VK_BINDING_ENV_CONDITIONAL 14 /* float[] each row's texels' cdf */
 #define GC_VK_BINDING_COUNT 15
-/* Instanced passes (aov_instances.comp) add the two-level BVH's top level and instances
- * (gc_instance.h); NODES and TRIS then hold every mesh's bottom-level tree. */
+/* Instanced passes (the shaders built with GC_SCENE_INSTANCED) add the two-level BVH's top
+ * level and instances (gc_instance.h); NODES and TRIS then hold every mesh's bottom-level tree. */
 #define GC_VK_BINDING_TLAS 15            /* GcBvhNode[] over the instances */
 #define GC_VK_BINDING_INSTANCES 16       /* GcInstance[] in the top level's leaf order */
 #define GC_VK_INSTANCED_BINDING_COUNT 17

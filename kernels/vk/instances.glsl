@@ -1,6 +1,6 @@
 /*
  * instances.glsl — the two-level BVH of an instanced scene for the Vulkan passes that trace
- * one (aov_instances.comp, and path.comp and whitted.comp built with GC_SCENE_INSTANCED): the
+ * one (aov.comp, path.comp and whitted.comp built with GC_SCENE_INSTANCED): the
  * top level's nodes and the instances (gc_instance.h), and the accessors through which the
  * bottom traversal (gc_traverse_instances.h) reads every mesh's tree from the shared NODES and
  * TRIS bindings. GLSL has no pointers to offset, so the accessors add the bases of the hit

@@ -1,9 +1,9 @@
 // geocold-instances: the instancing stress scene. One mesh (the 100k-triangle dragon for the
 // acceptance run) copied N times on a cubic grid under seeded random rotations, rendered
-// through the two-level BVH as first-hit AOVs (kernels/aov_instances.cl, one sample per
-// pixel) or, with --spp, path traced under a white sky (megakernel.cl on the instanced scene).
-// Prints the device bytes of the meshes and of the instances (and per instance), and writes
-// the image when asked.
+// through the two-level BVH (DeviceScene::upload_instanced and a Renderer, as geocold-cl
+// renders a glTF that reuses meshes) as first-hit AOVs (aov.cl, one sample per pixel) or, with
+// --spp, path traced under a white sky. Prints the device bytes of the meshes and of the
+// instances (and per instance), and writes the image when asked.
 //
 //     geocold-instances --mesh dragon.obj --instances 1000000 --device gpu --out dragons.png
 //     geocold-instances --mesh dragon.obj --instances 1000000 --spp 16 --out dragons-path.png
@@ -162,10 +162,9 @@ void write_film(const Options& o, const Film& film, const std::string& device, c
     write_image(o.out, film, meta);
 }
 
-// Path traced through DeviceScene::upload_instanced and a Renderer, as geocold-cl renders a
-// glTF that reuses meshes.
-int run_path(const Options& o, const cl::DeviceInfo& device, const InstancedScene& scene, const InstanceBvhParts& parts,
-             float spacing, int side)
+// Renders o.aov (one sample) or, with o.spp, the path tracer under a white sky.
+int run(const Options& o, const cl::DeviceInfo& device, const InstancedScene& scene, const InstanceBvhParts& parts,
+        float spacing, int side)
 {
     const cl::Context context(device);
     DeviceTuning tuning;
@@ -174,84 +173,50 @@ int run_path(const Options& o, const cl::DeviceInfo& device, const InstancedScen
         std::make_shared<const DeviceScene>(DeviceScene::upload_instanced(context, scene, parts, {}, tuning));
     const std::uint64_t instance_bytes =
         device_scene->instance_level.tlas.bytes() + device_scene->instance_level.instances.bytes();
-    std::printf("device %s, layout %s\n", device.device_name.c_str(), layout_name(device_scene->bvh.layout()));
-    std::printf("device bytes: meshes %llu (trees and shading data), instances %llu (%.1f per instance)\n",
-                (unsigned long long)(device_scene->bytes() - instance_bytes), (unsigned long long)instance_bytes,
-                double(instance_bytes) / double(o.instances));
-    RenderSettings settings;
-    settings.width = o.width;
-    settings.height = o.height;
-    settings.spp = o.spp;
-    settings.env_radiance = glm::vec3(1.0f);
-    RenderSetup setup;
-    setup.tuning = tuning;
-    Renderer renderer(context, device_scene, grid_camera(spacing, side), settings, setup);
-    const auto t0 = std::chrono::steady_clock::now();
-    renderer.render(0, o.spp);
-    const double render_s = seconds_since(t0);
-    const Film film = renderer.film();
-    double mean = 0.0;
-    for (std::uint32_t y = 0; y < film.height(); ++y)
-        for (std::uint32_t x = 0; x < film.width(); ++x) mean += film.at(x, y).g;
-    mean /= double(film.width()) * film.height();
-    std::printf("path traced %dx%d, %u spp in %.3f s (%.2f Msamples/s), mean green %.4f\n", o.width, o.height, o.spp,
-                render_s, double(o.width) * o.height * o.spp / render_s * 1e-6, mean);
-    write_film(o, film, device.device_name, "path", render_s);
-    return mean > 0.0 ? 0 : 1;
-}
-
-template <class Bvh>
-int run(const Options& o, const cl::DeviceInfo& device, const InstancedScene& scene, const Bvh& bvh, float spacing,
-        int side)
-{
-    const cl::Context context(device);
-    DeviceTuning tuning;
-    tuning.bvh_layout = bvh_layout_for(device, layout_of(o));
-    // The scene of meshes: attributes, materials and textures (its own BVH is not traced).
-    const DeviceScene meshes = DeviceScene::upload(context, scene.meshes, build_bvh(scene.meshes), {}, tuning);
-    const cl::Program program(context, "aov_instances.cl", scene_program_options(meshes));
-    auto tlas = cl::read_only_buffer(context, bvh.tlas, "tlas");
-    auto instances = cl::read_only_buffer(context, bvh.instances, "instances");
-    auto nodes = cl::read_only_buffer(context, bvh.nodes, "mesh nodes");
-    auto tris = cl::read_only_buffer(context, bvh.tris, "mesh triangles");
-    const std::uint64_t mesh_bytes = nodes.bytes() + tris.bytes() + meshes.bytes() - meshes.bvh.bytes();
-    const std::uint64_t instance_bytes = tlas.bytes() + instances.bytes();
+    const std::uint64_t mesh_bytes = device_scene->bytes() - instance_bytes;
     const std::size_t drawn = scene.instanced_triangle_count();
-    std::printf("device %s, layout %s\n", device.device_name.c_str(), layout_name(meshes.bvh.layout()));
+    std::printf("device %s, layout %s\n", device.device_name.c_str(), layout_name(device_scene->bvh.layout()));
     std::printf("device bytes: meshes %llu (trees and shading data), instances %llu (%.1f per instance), total %llu "
                 "for %zu triangles drawn (%.4f bytes per drawn triangle)\n",
                 (unsigned long long)mesh_bytes, (unsigned long long)instance_bytes,
                 double(instance_bytes) / double(o.instances), (unsigned long long)(mesh_bytes + instance_bytes), drawn,
                 double(mesh_bytes + instance_bytes) / double(drawn));
-
-    const Camera camera = grid_camera(spacing, side);
+    const bool path = o.spp > 0;
     RenderSettings settings;
     settings.width = o.width;
     settings.height = o.height;
-    settings.integrator = IntegratorKind::Aov;
-    settings.aov = o.aov;
-    const dev::GcRenderParams params = make_render_params(scene.meshes, camera, settings);
-    auto film_buf = cl::Buffer<glm::vec4>::create(context, params.pixel_count, CL_MEM_READ_WRITE, "film");
-    film_buf.write(std::vector<glm::vec4>(params.pixel_count, glm::vec4(0.0f)));
-    cl::Kernel kernel = program.kernel("aov_instances_render");
-    kernel.set_args(params, tlas, instances, nodes, tris, meshes.shade_args(), film_buf);
-    const auto t0 = std::chrono::steady_clock::now();
-    kernel.launch(context, params.pixel_count, 0, "instanced aov");
-    context.finish();
-    const double render_s = seconds_since(t0);
-    std::vector<glm::vec4> sums(params.pixel_count);
-    film_buf.read(sums);
-    Film film(params.width, params.height);
-    std::size_t lit = 0;
-    for (std::uint32_t i = 0; i < params.pixel_count; ++i) {
-        const glm::vec4 v = sums[i];
-        lit += v.x != 0.0f || v.y != 0.0f || v.z != 0.0f;
-        film.set(i % params.width, i / params.width, Rgba{v.x, v.y, v.z, 1.0f});
+    settings.spp = path ? o.spp : 1;
+    if (path) {
+        settings.env_radiance = glm::vec3(1.0f);
+    } else {
+        settings.integrator = IntegratorKind::Aov;
+        settings.aov = o.aov;
     }
-    std::printf("rendered %ux%u (%s, 1 sample) in %.3f s: %zu pixels on geometry (%.1f %%)\n", params.width,
-                params.height, aov_name(o.aov), render_s, lit, 100.0 * double(lit) / params.pixel_count);
-    write_film(o, film, device.device_name, "aov", render_s);
-    return lit > 0 ? 0 : 1;
+    RenderSetup setup;
+    setup.tuning = tuning;
+    Renderer renderer(context, device_scene, grid_camera(spacing, side), settings, setup);
+    const auto t0 = std::chrono::steady_clock::now();
+    renderer.render(0, settings.spp);
+    const double render_s = seconds_since(t0);
+    const Film film = renderer.film();
+    double mean = 0.0;
+    std::size_t lit = 0;
+    for (std::uint32_t y = 0; y < film.height(); ++y)
+        for (std::uint32_t x = 0; x < film.width(); ++x) {
+            const Rgba v = film.at(x, y);
+            mean += v.g;
+            lit += v.r != 0.0f || v.g != 0.0f || v.b != 0.0f;
+        }
+    const double pixels = double(film.width()) * film.height();
+    mean /= pixels;
+    if (path)
+        std::printf("path traced %dx%d, %u spp in %.3f s (%.2f Msamples/s), mean green %.4f\n", o.width, o.height,
+                    o.spp, render_s, pixels * o.spp / render_s * 1e-6, mean);
+    else
+        std::printf("rendered %dx%d (%s, 1 sample) in %.3f s: %zu pixels on geometry (%.1f %%)\n", o.width, o.height,
+                    aov_name(o.aov), render_s, lit, 100.0 * double(lit) / pixels);
+    write_film(o, film, device.device_name, path ? "path" : "aov", render_s);
+    return (path ? mean > 0.0 : lit > 0) ? 0 : 1;
 }
 
 }  // namespace
@@ -274,14 +239,7 @@ int main(int argc, char** argv)
         const auto t1 = std::chrono::steady_clock::now();
         const InstanceBvhParts parts = build_instance_bvh(scene);
         std::printf("two-level BVH built in %.2f s\n", seconds_since(t1));
-        const cl::DeviceInfo device = cl::select_device(o.device);
-        if (o.spp > 0) return run_path(o, device, scene, parts, spacing, side);
-        switch (bvh_layout_for(device, layout_of(o))) {
-        case BvhLayout::Binary: return run(o, device, scene, assemble_binary(parts), spacing, side);
-        case BvhLayout::Wide: return run(o, device, scene, assemble_wide(parts), spacing, side);
-        case BvhLayout::Wide8: return run(o, device, scene, assemble_wide8(parts), spacing, side);
-        }
-        return 1;
+        return run(o, cl::select_device(o.device), scene, parts, spacing, side);
     } catch (const Error& e) {
         std::fprintf(stderr, "geocold-instances: %s\n", e.what());
         return static_cast<int>(e.code());
