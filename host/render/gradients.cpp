@@ -114,7 +114,7 @@ std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layou
 PathAdjoint::PathAdjoint(const Renderer& renderer, SlotAtomics atomics, GroupSums group_sums)
     : m_context(renderer.context()),
       m_atomics(atomics),
-      m_group_sums(group_sums == GroupSums::On || (group_sums == GroupSums::Auto && m_context.device().is_gpu))
+      m_group_sums(group_sums == GroupSums::On)
 {
     build(renderer);
 }

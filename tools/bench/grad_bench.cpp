@@ -80,7 +80,7 @@ const char* kUsage =
     "  --memory-depths LIST  depths of the memory figures (default 6,64)\n"
     "  --params leftWall|walls  materials/leftWall/base_color, or every non-emitting material's base_color\n"
     "  --threads N           CPU device threads (PoCL)\n"
-    "  --group-sums auto|on|off  work-group sums of the gradient slots (default auto: on GPUs)\n"
+    "  --group-sums auto|on|off  work-group sums of the gradient slots (default auto: off)\n"
     "  --no-time             skip the timed iterations\n"
     "  --no-memory           skip the memory figures\n"
     "  --determinism         per device, two iterations' gradient bits and whether they agree; across\n"
