@@ -146,7 +146,7 @@ GC_FUNC uint gc_owen_scramble_reversed(uint reversed, uint seed)
 
 /* Four low-discrepancy numbers in [0, 1) for (pixel, sample, block, seed): see the header.
  * The Sobol index has 16 bits: each run of 2^16 samples (sample >> 16) is scrambled with keys
- * of its own, so windows of up to 2^16 samples stay stratified and the loop stays short. */
+ * of its own, so windows of up to 2^16 samples stay stratified with 16 direction numbers. */
 GC_FUNC float4 gc_sobol_rand4(uint pixel, uint sample, uint block, uint seed)
 {
     const uint4 key = gc_pcg4d(make_uint4(pixel, block, seed, (sample >> 16u) ^ 0x5EED50B0u));
@@ -166,7 +166,6 @@ GC_FUNC float4 gc_sobol_rand4(uint pixel, uint sample, uint block, uint seed)
 #define gc_sample4(params, pixel, sample, block)                                             \
     (((params).flags & GC_RENDER_SOBOL) != 0u ? gc_sobol_rand4(pixel, sample, block, (params).seed) \
                                               : gc_rand4(pixel, sample, block, (params).seed))
-
 
 GC_NAMESPACE_END
 
