@@ -491,7 +491,9 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
     if (shared.round_error) std::rethrow_exception(shared.round_error);
     outcome.cancelled = shared.cancelled;
     outcome.timed_out = shared.timed_out;
-    outcome.seconds = shared.start ? seconds_between(*shared.start, Clock::now()) : seconds_between(called, Clock::now());
+    const auto ended = Clock::now();
+    outcome.seconds = seconds_between(shared.start ? *shared.start : called, ended);
+    outcome.seconds_with_setup = seconds_between(called, ended);
     const bool stopped = shared.cancelled || shared.timed_out;
     if (!stopped && shared.finished_count < shared.queued_end()) {
         for (const auto& e : errors)

@@ -59,7 +59,10 @@ struct DeviceReport {
 struct FrameOutcome {
     bool cancelled = false;
     bool timed_out = false;
-    double seconds = 0.0;  // from the start of rendering to the last chunk
+    double seconds = 0.0;  // from the start of rendering (the first device ready) to the last chunk
+    // From the call, every device's set-up included: what `--device all` and one device
+    // compare fairly on (a device ready later than the first counts its set-up in `seconds`).
+    double seconds_with_setup = 0.0;
     std::vector<DeviceReport> devices;
 };
 

@@ -5,6 +5,8 @@
 // two), else the same device twice (two contexts, two threads: the scheduler is the same).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -117,6 +119,14 @@ TEST_F(MultiDeviceTest, SeveralDevicesOfOneKindGiveTheBitsOfOne)
         EXPECT_TRUE(d.failure.empty()) << d.failure;
     }
     EXPECT_EQ(chunks, plan.chunk_count());
+    // The two clocks: the frame's (from the first device ready) and the one with every
+    // device's set-up, which holds the frame and the earliest set-up.
+    double earliest_setup = outcome.devices.front().setup_seconds;
+    for (const DeviceReport& d : outcome.devices) earliest_setup = std::min(earliest_setup, d.setup_seconds);
+    std::printf("  frame %.3f s, with set-ups %.3f s (earliest set-up %.3f s)\n", outcome.seconds,
+                outcome.seconds_with_setup, earliest_setup);
+    EXPECT_GT(outcome.seconds, 0.0);
+    EXPECT_GE(outcome.seconds_with_setup, outcome.seconds + earliest_setup);
     const std::vector<cl::DeviceInfo> three = {same_kind[0], same_kind[1], same_kind[0]};
     EXPECT_TRUE(same_bits(one, frame(three, plan)));
 }

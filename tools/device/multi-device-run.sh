@@ -30,7 +30,7 @@ run() {  # label, args...
   local label=$1; shift
   $cli "$@" -v -o /tmp/o.pfm > /tmp/r.log 2>&1; rc=$?
   echo "$label rc=$rc: $(grep -E 'wrote|error' /tmp/r.log)" | tee -a "$log"
-  grep "device .*chunks" /tmp/r.log | sed 's/^/    /' | tee -a "$log"
+  grep -E "device .*chunks|^geocold-cl: frame:" /tmp/r.log | sed 's/^/    /' | tee -a "$log"
   sha256sum /tmp/o.pfm | cut -c1-16 | sed "s/^/    hash /" | tee -a "$log"
 }
 scenes=${*:-cornell dragon large}
