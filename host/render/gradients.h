@@ -43,9 +43,8 @@ struct GradientStats {
 enum class SlotAtomics { Auto, Split32 };
 
 // Whether each work-group sums its additions to the materials' and the environment's slots in
-// local memory and adds those sums once (gc_grad_slots.h). Auto = off: on an H100 it made an
-// iteration slower (512x512 16+16 spp 0.0781 s against 0.0703 s, 128x128 0.0028 against
-// 0.0025; docs/performance.md), the GPU's atomics at a few addresses costing less than the
+// local memory and adds those sums once (gc_grad_slots.h). Auto = off: measured slower on a
+// GPU (docs/performance.md, "Gradients"), the atomics at a few addresses costing less than the
 // group's barriers and local sums. On tests it on any device (in groups of 16 work-items on
 // CPUs). The bits are the same either way.
 enum class GroupSums { Auto, On, Off };

@@ -103,8 +103,8 @@ bool CrossCheckReport::passed(const Tolerances& tol) const
            compute_aov.id_agreement >= tol.min_id_agreement &&
            compute_aov.max_depth_rel_error <= tol.max_depth_rel_error &&
            judge_agreement(path, tol.radiance).passed() && judge_agreement(whitted, tol.radiance).passed() &&
-           (!instanced || (judge_agreement(instanced_path, tol.radiance).passed() &&
-                           judge_agreement(instanced_whitted, tol.radiance).passed()));
+           (!instanced || (judge_agreement(instanced->path, tol.radiance).passed() &&
+                           judge_agreement(instanced->whitted, tol.radiance).passed()));
 }
 
 std::string CrossCheckReport::format(const Tolerances& tol) const
@@ -127,8 +127,8 @@ std::string CrossCheckReport::format(const Tolerances& tol) const
     s += radiance_lines("path", path, tol);
     s += radiance_lines("whitted", whitted, tol);
     if (instanced) {
-        s += radiance_lines("instanced path", instanced_path, tol);
-        s += radiance_lines("instanced whitted", instanced_whitted, tol);
+        s += radiance_lines("instanced path", instanced->path, tol);
+        s += radiance_lines("instanced whitted", instanced->whitted, tol);
     }
     s += "  time: Vulkan raster " + num("%.3f", raster_seconds) + " s/frame; s/spp Vulkan compute path " +
          num("%.3f", vk_path_seconds_per_spp) + ", OpenCL path " + num("%.3f", cl_path_seconds_per_spp) +
@@ -186,16 +186,17 @@ void add_instanced(CrossCheckReport& report, const cl::Context& cl_context, cons
     const auto cl_scene = std::make_shared<const DeviceScene>(DeviceScene::upload_instanced(
         cl_context, instances.scene, instances.bvh, load_environment_map(settings), setup.tuning));
     const InstancedBvh bvh = assemble_binary(instances.bvh);
+    InstancedAgreement agreement;
     for (const IntegratorKind integrator : {IntegratorKind::Path, IntegratorKind::Whitted}) {
         RenderSettings s = settings;
         s.integrator = integrator;
         const Film cl_film = render_cl(cl_context, setup, cl_scene, camera, s, settings.spp);
         ComputeReference reference(vk_context, instances.scene, bvh, camera, s);
         const Film vk_film = render_vk(reference, settings.spp);
-        (integrator == IntegratorKind::Path ? report.instanced_path : report.instanced_whitted) =
+        (integrator == IntegratorKind::Path ? agreement.path : agreement.whitted) =
             compare_images(vk_film, cl_film, Tolerances{}.radiance.pixel);
     }
-    report.instanced = true;
+    report.instanced = agreement;
 }
 
 }  // namespace gc::vk

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "host/bvh/bvh.h"
@@ -21,6 +22,12 @@
 #include "host/vk/context.h"
 
 namespace gc::vk {
+
+// Vulkan compute radiance vs OpenCL radiance with the meshes kept as instances on both sides.
+struct InstancedAgreement {
+    ImageDifference path;     // path.comp vs the OpenCL path tracer
+    ImageDifference whitted;  // whitted.comp vs whitted.cl
+};
 
 struct CrossCheckReport {
     std::uint32_t width = 0;
@@ -35,9 +42,7 @@ struct CrossCheckReport {
     double cl_path_seconds_per_spp = 0.0;
     double vk_whitted_seconds_per_spp = 0.0;
     double cl_whitted_seconds_per_spp = 0.0;
-    bool instanced = false;            // add_instanced ran: the two below are set
-    ImageDifference instanced_path;    // path.comp vs the OpenCL path tracer, both instanced
-    ImageDifference instanced_whitted; // whitted.comp vs whitted.cl, both instanced
+    std::optional<InstancedAgreement> instanced;  // set by add_instanced
 
     bool passed(const Tolerances& tol = {}) const;
     // Human-readable figures, one per line, each marked ok / FAIL against `tol`.
@@ -51,7 +56,7 @@ CrossCheckReport cross_check(const cl::Context& cl_context, const Context& vk_co
                              const RenderSetup& setup = {});
 
 // The path and Whitted checks again on the scene's instanced form (the two-level BVH on both
-// sides: DeviceScene::upload_instanced, kernels/vk/instances.glsl), into report.instanced_*.
+// sides: DeviceScene::upload_instanced, kernels/vk/instances.glsl), into report.instanced.
 void add_instanced(CrossCheckReport& report, const cl::Context& cl_context, const Context& vk_context,
                    const PreparedInstances& instances, const Camera& camera, const RenderSettings& settings,
                    const RenderSetup& setup = {});

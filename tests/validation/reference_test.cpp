@@ -261,9 +261,8 @@ TEST_F(ReferenceTest, DetectsAMissingLens)
 }
 
 // The Sobol sampler's purpose: at 16 spp its error against the reference is well below the
-// independent sampler's with the same seed. The Cornell box's rel MSE (the reference's own
-// noise included) when this was written, PoCL: independent 0.0108, sobol 0.0067 (0.62x); the
-// bound, 0.8x, leaves room for another device's bits.
+// independent sampler's with the same seed (figures: docs/decisions/sobol-sampler.md); the
+// bound, 0.8x, leaves room for another device's bits and the reference's own noise.
 TEST_F(ReferenceTest, SobolSamplesHaveLessErrorAtEqualSpp)
 {
     GC_SKIP_WITHOUT_EXR_READER();

@@ -108,7 +108,7 @@ TEST_F(InstancedCrossCheck, PathAndWhittedEqualOpenCl)
     ASSERT_TRUE(report.instanced);
     const AgreementLimits strict;
     for (const auto& [integrator, d] :
-         {std::pair{"path", &report.instanced_path}, std::pair{"whitted", &report.instanced_whitted}}) {
+         {std::pair{"path", &report.instanced->path}, std::pair{"whitted", &report.instanced->whitted}}) {
         std::printf("[instanced %s, Vulkan vs OpenCL] mean %.4g, rel MSE %.3g, %.3f %% of pixels bit-identical\n",
                     integrator, d->mean_ref, d->rel_mse, 100.0 * d->identical);
         const AgreementVerdict v = judge_agreement(*d, strict);
