@@ -247,8 +247,8 @@ ExitCode run_render(const Options& options)
                     " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
                     (d.failure.empty() ? "" : ", failed: " + d.failure) +
                     (d.left_slow ? ", left the frame: under a tenth of the other devices' rate" : ""));
-    log_verbose("frame: " + fixed(outcome.seconds, 3) + " s from the first device ready, " +
-                fixed(outcome.seconds_with_setup, 3) + " s with every device's set-up");
+    log_verbose("frame: " + fixed(outcome.seconds, 3) + " s rendering (every device set up), " +
+                fixed(outcome.seconds_with_setup, 3) + " s with the set-ups");
     const double render_seconds = outcome.seconds;
     if (options.partial) pixel_samples = std::uint64_t(settings.width) * settings.height * samples;
     const double samples_per_second = static_cast<double>(pixel_samples) / std::max(render_seconds, 1e-9);

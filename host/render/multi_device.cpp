@@ -83,7 +83,8 @@ struct Shared {
     bool cancelled = false;
     bool timed_out = false;
     std::size_t live = 0;
-    std::optional<Clock::time_point> start;  // the first device ready
+    std::size_t setting_up = 0;  // devices whose set-up has neither finished nor failed
+    std::optional<Clock::time_point> start;  // every device set up (or failed): rendering begins
     std::atomic<std::uint64_t> complete_samples{0};
 
     std::mutex sink_mutex;      // one sink call at a time
@@ -193,6 +194,7 @@ struct FrameJob {
     const FrameControl& control;
     const ChunkSink& sink;
     const ChunkRounds& rounds;
+    Clock::time_point called;  // render_chunks was called
 };
 
 // Tells control.on_progress the samples of complete chunks plus every device's part-done one.
@@ -244,11 +246,9 @@ public:
             m_with_squares = m_job.control.with_squares || m_job.rounds.active();
             ChunkHandoff handoff(session.context(), renderer, m_with_squares);
             m_report.setup_seconds = seconds_between(setup_start, Clock::now());
-            {
-                std::lock_guard lock(m_shared.mutex);
-                if (!m_shared.start) m_shared.start = Clock::now();
-                m_start = *m_shared.start;
-            }
+            if (m_job.control.on_device_ready) m_job.control.on_device_ready(m_me);
+            m_report.ready_at = seconds_between(m_job.called, Clock::now());
+            m_start = wait_for_every_setup();
             render_until_done(renderer, handoff);
             handoff.wait();
             return nullptr;
@@ -262,6 +262,7 @@ public:
                 m_report.failure = "unknown error";
             }
             std::lock_guard lock(m_shared.mutex);
+            if (!m_set_up) end_setup();
             leave_frame(m_shared, m_me, m_mine);
             return error;
         }
@@ -269,6 +270,28 @@ public:
 
 private:
     double elapsed() const { return seconds_between(m_start, Clock::now()); }
+
+    // Rendering starts once every device is set up (or failed): a device ready early would
+    // otherwise render on the cores the others' set-up (a GPU's upload and driver calls) runs
+    // on, and slow the frame's fastest device down (docs/performance.md, "Several devices on
+    // one frame"). Cycles' multi-device waits for every device's kernels and scene likewise.
+    Clock::time_point wait_for_every_setup()
+    {
+        std::unique_lock lock(m_shared.mutex);
+        end_setup();
+        m_shared.changed.wait(lock, [this] { return m_shared.setting_up == 0; });
+        return *m_shared.start;
+    }
+
+    // This device's set-up is over, done or failed (under shared.mutex); the last one starts the frame.
+    void end_setup()
+    {
+        m_set_up = true;
+        if (--m_shared.setting_up == 0) {
+            m_shared.start = Clock::now();
+            m_shared.changed.notify_all();
+        }
+    }
 
     void render_until_done(Renderer& renderer, ChunkHandoff& handoff)
     {
@@ -461,7 +484,8 @@ private:
     Shared& m_shared;
     DeviceReport& m_report;
     std::vector<std::uint32_t> m_mine;  // chunks this device holds in shared.running
-    Clock::time_point m_start;          // the frame's start (the first device ready)
+    Clock::time_point m_start;          // the frame's start (every device set up)
+    bool m_set_up = false;              // end_setup() was called
     bool m_with_squares = false;
     std::shared_ptr<const std::vector<std::uint32_t>> m_selected;  // the renderer's pick of pixels
     std::uint32_t m_passes = 0;
@@ -476,11 +500,12 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
     if (devices.empty()) throw UsageError("no device to render on");
     Shared shared(plan, devices.size(), rounds);
     shared.live = devices.size();
+    shared.setting_up = devices.size();
     FrameOutcome outcome;
     outcome.devices.resize(devices.size());
     std::vector<std::exception_ptr> errors(devices.size());
     const auto called = Clock::now();
-    const FrameJob job{prepared, settings, setup, plan, control, sink, rounds};
+    const FrameJob job{prepared, settings, setup, plan, control, sink, rounds, called};
 
     std::vector<std::thread> threads;
     threads.reserve(devices.size());

@@ -7,9 +7,10 @@
 //     write_image("out.exr", mean_film(frame.sums), meta);
 //
 // Each device gets a Session of its own (context, device scene, renderer), built in its thread,
-// so the kernels of several devices compile at once. A device pulls the next chunks off the
-// queue (a GPU takes more at a time than a CPU, ask_size()), renders each from a cleared film
-// and hands its sums on. When the queue is empty, an idle device re-renders the chunk another
+// so the kernels of several devices compile at once; rendering starts when every device is set
+// up (or failed), so that no device renders on the cores another one's set-up needs. A device
+// pulls the next chunks off the queue (a GPU takes more at a time than a CPU, ask_size()),
+// renders each from a cleared film and hands its sums on. When the queue is empty, an idle device re-renders the chunk another
 // device has held longest, if it expects to finish it sooner (a backup, as MapReduce's backup
 // tasks): the first copy in wins and the other is abandoned at its next pass. On devices of one
 // kind the copies have the same bits; across kinds they agree within --consistency's tolerance,
@@ -39,6 +40,9 @@ struct FrameControl {
     // Called (from any device's thread, one call at a time) after each pass with the samples
     // per pixel finished so far over the whole plan (complete chunks and chunks in flight).
     std::function<void(std::uint64_t samples_done)> on_progress;
+    // Called from a device's thread once its set-up is done (with its index in the device
+    // list), before it waits for the others' and rendering starts.
+    std::function<void(std::size_t device)> on_device_ready;
     // Whether the chunks' sums carry the squares too (for the variance; twice the read-back).
     bool with_squares = false;
 };
@@ -50,6 +54,7 @@ struct DeviceReport {
     std::uint32_t backups = 0;  // of those, backups of a chunk another device held
     std::uint64_t samples = 0;  // samples per pixel it rendered (including abandoned work)
     double setup_seconds = 0;   // upload and kernel build
+    double ready_at = 0;        // seconds from the call to the end of its set-up (on_device_ready's return)
     double busy_seconds = 0;    // rendering
     double finished_at = 0;     // seconds from the frame's start to the device's last chunk
     std::string failure;        // why it dropped out; empty if it did not
@@ -59,10 +64,8 @@ struct DeviceReport {
 struct FrameOutcome {
     bool cancelled = false;
     bool timed_out = false;
-    double seconds = 0.0;  // from the start of rendering (the first device ready) to the last chunk
-    // From the call, every device's set-up included: what `--device all` and one device
-    // compare fairly on (a device ready later than the first counts its set-up in `seconds`).
-    double seconds_with_setup = 0.0;
+    double seconds = 0.0;  // from the start of rendering (every device set up) to the last chunk
+    double seconds_with_setup = 0.0;  // from the call, the set-ups included
     std::vector<DeviceReport> devices;
 };
 
