@@ -1,7 +1,7 @@
 /*
  * adjoint.cl — the adjoint of the path integrator (path replay backpropagation): gradients of
- * a loss of the image with respect to the scene's parameters. One work-item per pixel of the
- * batch; for each of its samples it
+ * a loss of the image with respect to the scene's parameters. One work-item per pixel and run
+ * of samples (all of the pixel's on CPUs, one on GPUs: the host's choice); for each sample it
  *   1. traces the path as megakernel.cl does (the same calls with the same random-number keys,
  *      gc_shade_vertex), to learn the sample's radiance L;
  *   2. traces it again, and at each vertex gc_vertex_adjoint adds the derivative of what the
@@ -43,11 +43,11 @@ static float3 gc_adjoint_path(const GcRenderParams params, GC_SCENE_PARAMS, GcGr
     return GC_XYZ(path.radiance);
 }
 
-/* Every sample of one pixel: its path for L, then its derivatives. */
+/* Samples [first, end) of the pass at one pixel: each sample's path for L, then its derivatives. */
 static void gc_adjoint_pixel(const GcRenderParams params, GC_SCENE_PARAMS, GcGradTarget g, const uint pixel,
-                             const float3 delta)
+                             const float3 delta, const uint first, const uint end)
 {
-    for (uint k = 0u; k < params.samples_in_pass; ++k) {
+    for (uint k = first; k < end; ++k) {
         const uint sample = params.sample_index + k;
         const float4 jitter = gc_sample4(params, pixel, sample, GC_RNG_BLOCK_CAMERA);
         const GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
@@ -67,7 +67,8 @@ __kernel void path_adjoint(const GcRenderParams params,
                            const float scale,
                            const uint env_slot,
                            const uint slot_count,
-                           const uint view_count)
+                           const uint view_count,
+                           const uint samples_per_item)
 {
     GcGradTarget g;
     g.slots = slots;
@@ -85,12 +86,16 @@ __kernel void path_adjoint(const GcRenderParams params,
     for (uint i = get_local_id(0); i < g.group_count; i += get_local_size(0)) group_slots[i] = 0ul;
     barrier(CLK_LOCAL_MEM_FENCE);
 #endif
+    /* Work-item i takes pixel i mod pixel_count and the (i / pixel_count)-th run of
+     * samples_per_item samples there: neighbouring items trace neighbouring pixels. */
     const uint item = get_global_id(0);
-    if (item < params.pixel_count) {
-        const uint pixel = params.pixel_offset + item;
+    const uint first = (item / params.pixel_count) * samples_per_item;
+    if (first < params.samples_in_pass) {
+        const uint pixel = params.pixel_offset + item % params.pixel_count;
         const float3 delta = loss_grad[pixel].xyz;
         if (delta.x != 0.0f || delta.y != 0.0f || delta.z != 0.0f)
-            gc_adjoint_pixel(params, GC_SCENE_ARGS, g, pixel, delta);
+            gc_adjoint_pixel(params, GC_SCENE_ARGS, g, pixel, delta, first,
+                             min(first + samples_per_item, params.samples_in_pass));
     }
 #if GC_GRAD_GROUP_SLOTS > 0
     barrier(CLK_LOCAL_MEM_FENCE);

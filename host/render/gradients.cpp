@@ -109,12 +109,21 @@ std::vector<std::uint32_t> slots_of(const ParamRef& ref, const SlotLayout& layou
     return {};
 }
 
+// Samples per work-item: as asked (0: all of a pixel's on CPUs, one on GPUs), but never so few
+// that the items' count leaves 32 bits (the kernel's item index).
+std::uint32_t samples_per_item(std::uint32_t asked, bool gpu, std::uint32_t pixels, std::uint32_t spp)
+{
+    std::uint32_t per = asked != 0 ? std::min(asked, spp) : (gpu ? 1u : spp);
+    const std::uint64_t max_runs = std::max<std::uint64_t>(1, (std::uint64_t(1) << 31) / pixels);
+    return std::max<std::uint32_t>(per, static_cast<std::uint32_t>((spp + max_runs - 1) / max_runs));
+}
+
 }  // namespace
 
-PathAdjoint::PathAdjoint(const Renderer& renderer, SlotAtomics atomics, GroupSums group_sums)
+PathAdjoint::PathAdjoint(const Renderer& renderer, AdjointOptions options)
     : m_context(renderer.context()),
-      m_atomics(atomics),
-      m_group_sums(group_sums == GroupSums::On)
+      m_options(options),
+      m_group_sums(options.group_sums == GroupSums::On)
 {
     build(renderer);
 }
@@ -123,7 +132,7 @@ void PathAdjoint::build(const Renderer& renderer)
 {
     const DeviceScene& scene = renderer.device_scene();
     std::string options = scene_program_options(scene);
-    if (m_atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
+    if (m_options.atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
     if (m_group_sums) options += " -D GC_GRAD_GROUP_SLOTS=" + std::to_string(k_group_slots) + "u";
     m_program =
         std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
@@ -194,6 +203,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     // the groups sum their slots.
     const bool gpu = m_context.device().is_gpu;
     const std::size_t local_size = gpu ? 0 : (m_group_sums ? 16 : 1);
+    const std::uint32_t per_item = samples_per_item(m_options.samples_per_item, gpu, pixels, spp);
+    const std::size_t items = std::size_t(pixels) * ((spp + per_item - 1) / per_item);
     std::vector<std::uint64_t> sums(slot_count, 0);
     m_stats = {};
     for (int attempt = 0; attempt < 2; ++attempt) {
@@ -204,8 +215,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         max_bits.write(std::span<const std::uint32_t>(&zero, 1));
         m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, view_slots,
                           std::ldexp(1.0f, e), layout.env_slot, slot_count,
-                          static_cast<std::uint32_t>(layout.view_slots.size()));
-        if (max_delta > 0.0) m_kernel.launch(m_context, pixels, local_size, "adjoint paths");
+                          static_cast<std::uint32_t>(layout.view_slots.size()), per_item);
+        if (max_delta > 0.0) m_kernel.launch(m_context, items, local_size, "adjoint paths");
         m_context.finish();
         std::uint32_t bits = 0;
         max_bits.read(std::span<std::uint32_t>(&bits, 1));

@@ -49,11 +49,21 @@ enum class SlotAtomics { Auto, Split32 };
 // CPUs). The bits are the same either way.
 enum class GroupSums { Auto, On, Off };
 
+// How the adjoint's work is laid out and summed; every choice gives the same bits.
+struct AdjointOptions {
+    SlotAtomics atomics = SlotAtomics::Auto;
+    GroupSums group_sums = GroupSums::Auto;
+    // Samples of one pixel a work-item traces, one after another. 0 = the device's choice:
+    // every sample of the pixel on CPUs (one long-lived item per core's turn, as the
+    // megakernel), one on GPUs (pixels x spp items keep the GPU full where pixels alone would
+    // not, and no item waits on another's long paths; docs/performance.md, "Gradients").
+    std::uint32_t samples_per_item = 0;
+};
+
 class PathAdjoint {
 public:
     // Builds kernels/adjoint.cl for `renderer`'s scene (again by backward if its features change).
-    explicit PathAdjoint(const Renderer& renderer, SlotAtomics atomics = SlotAtomics::Auto,
-                         GroupSums group_sums = GroupSums::Auto);
+    explicit PathAdjoint(const Renderer& renderer, AdjointOptions options = {});
 
     // d loss / d parameter for every name in `params` (UsageError for names that are unknown
     // or not differentiable), from `spp` samples per pixel (indices 0 .. spp - 1) with `seed`.
@@ -70,7 +80,7 @@ private:
     void build(const Renderer& renderer);
 
     const cl::Context& m_context;
-    SlotAtomics m_atomics;
+    AdjointOptions m_options;
     bool m_group_sums;
     KernelFeatures m_features;
     std::unique_ptr<cl::Program> m_program;

@@ -562,9 +562,10 @@ TEST_F(GradientTest, RussianRouletteKeepsTheGradientUnbiased)
     }
 }
 
-// Two 32-bit atomics with a carry give the same sums as 64-bit ones, and a work-group's sums
-// in local memory (GroupSums) the same as each work-item's own additions, bit for bit. The
-// floor's 16 x 16 texture puts its texels' slots on both sides of the group's 512.
+// Two 32-bit atomics with a carry give the same sums as 64-bit ones, a work-group's sums in
+// local memory (GroupSums) the same as each work-item's own additions, and work-items of one,
+// three (a short last run) or all four samples of a pixel the same, bit for bit. The floor's
+// 16 x 16 texture puts its texels' slots on both sides of the group's 512.
 TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
 {
     const RenderSettings settings = small_settings();
@@ -581,17 +582,18 @@ TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
     std::vector<std::string> names;
     for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
     ASSERT_EQ(names.back(), "textures/0/texels");
-    PathAdjoint plain(*rig.renderer, SlotAtomics::Auto, GroupSums::Off);
+    PathAdjoint plain(*rig.renderer, {SlotAtomics::Auto, GroupSums::Off, 4});
     const Gradients a = plain.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
     const struct {
         const char* what;
-        SlotAtomics atomics;
-        GroupSums group_sums;
-    } ways[] = {{"split atomics", SlotAtomics::Split32, GroupSums::Off},
-                {"group sums", SlotAtomics::Auto, GroupSums::On},
-                {"group sums, split atomics", SlotAtomics::Split32, GroupSums::On}};
+        AdjointOptions options;
+    } ways[] = {{"split atomics", {SlotAtomics::Split32, GroupSums::Off, 4}},
+                {"group sums", {SlotAtomics::Auto, GroupSums::On, 4}},
+                {"group sums, split atomics", {SlotAtomics::Split32, GroupSums::On, 4}},
+                {"a sample per item", {SlotAtomics::Auto, GroupSums::Off, 1}},
+                {"3 samples per item", {SlotAtomics::Auto, GroupSums::Off, 3}}};
     for (const auto& way : ways) {
-        PathAdjoint other(*rig.renderer, way.atomics, way.group_sums);
+        PathAdjoint other(*rig.renderer, way.options);
         const Gradients b = other.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
         for (const std::string& name : names) {
             ASSERT_EQ(a.at(name).size(), b.at(name).size());

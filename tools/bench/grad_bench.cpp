@@ -3,7 +3,8 @@
 //
 //   geocold-grad-bench [--device SPEC[,SPEC]] [--sizes 128:4,512:16] [--depth 6] [--repeats N]
 //                      [--memory-size 512:16] [--memory-depths 6,64] [--params leftWall|walls]
-//                      [--threads N] [--group-sums auto|on|off] [--no-time] [--no-memory] [--determinism] [--view]
+//                      [--threads N] [--group-sums auto|on|off] [--samples-per-item N] [--no-time]
+//                      [--no-memory] [--determinism] [--view]
 //
 // An iteration is what an optimiser's step costs: Renderer::render of spp samples (film
 // cleared first), the film read back with the loss mean(image) computed on the host, and
@@ -62,7 +63,7 @@ struct GradOptions {
     int repeats = 5;
     int threads = 0;
     std::string params = "leftWall";
-    GroupSums group_sums = GroupSums::Auto;
+    AdjointOptions adjoint;
     bool time = true;
     bool memory = true;
     bool determinism = false;
@@ -81,6 +82,7 @@ const char* kUsage =
     "  --params leftWall|walls  materials/leftWall/base_color, or every non-emitting material's base_color\n"
     "  --threads N           CPU device threads (PoCL)\n"
     "  --group-sums auto|on|off  work-group sums of the gradient slots (default auto: off)\n"
+    "  --samples-per-item N  samples of a pixel one adjoint work-item traces (default: the device's choice)\n"
     "  --no-time             skip the timed iterations\n"
     "  --no-memory           skip the memory figures\n"
     "  --determinism         per device, two iterations' gradient bits and whether they agree; across\n"
@@ -156,10 +158,12 @@ GradOptions parse(int argc, char** argv)
                 throw UsageError("--params: '" + o.params + "' is neither leftWall nor walls");
         } else if (a == "--group-sums") {
             const std::string v = value();
-            if (v == "auto") o.group_sums = GroupSums::Auto;
-            else if (v == "on") o.group_sums = GroupSums::On;
-            else if (v == "off") o.group_sums = GroupSums::Off;
+            if (v == "auto") o.adjoint.group_sums = GroupSums::Auto;
+            else if (v == "on") o.adjoint.group_sums = GroupSums::On;
+            else if (v == "off") o.adjoint.group_sums = GroupSums::Off;
             else throw UsageError("--group-sums: '" + v + "' is not auto, on or off");
+        } else if (a == "--samples-per-item") {
+            o.adjoint.samples_per_item = positive(a, value());
         } else if (a == "--no-time") {
             o.time = false;
         } else if (a == "--no-memory") {
@@ -205,12 +209,12 @@ struct Rig {
     Size size;
 
     Rig(const cl::Context& context, std::shared_ptr<const DeviceScene> device, const BenchScene& s, Size sz,
-        int depth, GroupSums group_sums)
+        int depth, const AdjointOptions& options)
         : size(sz)
     {
         renderer = std::make_unique<Renderer>(context, std::move(device), s.camera, settings_for(s, sz, depth),
                                               bench_render_setup());
-        adjoint = std::make_unique<PathAdjoint>(*renderer, SlotAtomics::Auto, group_sums);
+        adjoint = std::make_unique<PathAdjoint>(*renderer, options);
         // d mean(image) / d pixel, per colour channel.
         const float g = 1.0f / (3.0f * float(sz.side) * float(sz.side));
         loss_grad.assign(std::size_t(sz.side) * std::size_t(sz.side), glm::vec4(g, g, g, 0.0f));
@@ -247,7 +251,7 @@ json time_sizes(const cl::Context& context, const std::shared_ptr<const DeviceSc
     json out = json::array();
     for (const Size& size : o.sizes) {
         const auto start = Clock::now();
-        Rig rig(context, device, s, size, o.depth, o.group_sums);
+        Rig rig(context, device, s, size, o.depth, o.adjoint);
         const double build_s = seconds_since(start);
         const auto first = Clock::now();
         Gradients g;
@@ -284,7 +288,7 @@ json measure_memory(const cl::Context& context, const std::shared_ptr<const Devi
         const AllocCount before = alloc_count();
         reset_alloc_peak();
         {
-            Rig rig(context, device, s, o.memory_size, depth, o.group_sums);
+            Rig rig(context, device, s, o.memory_size, depth, o.adjoint);
             rig.iterate(s.scene, params, 1000, nullptr);
         }
         const AllocCount after = alloc_count();
@@ -320,7 +324,7 @@ std::vector<float> gradient_bits(const cl::Context& context, const std::shared_p
 {
     std::vector<std::vector<float>> runs;
     for (int run = 0; run < 2; ++run) {
-        Rig rig(context, device, s, o.sizes.front(), o.depth, o.group_sums);
+        Rig rig(context, device, s, o.sizes.front(), o.depth, o.adjoint);
         Gradients g;
         rig.iterate(s.scene, params, 1000, &g);
         std::vector<float> flat;

@@ -5,7 +5,7 @@
 #      512x512 16+16 spp, depth 6, on the GPU and on PoCL, against Mitsuba 3 cuda_ad_rgb prb
 #      in the same run where .deps/mitsuba is carried (GEOCOLD_PACK_MITSUBA=1; prb is one of
 #      Mitsuba's Python integrators, so the plugin cut of prepare-deps.sh keeps it), else
-#      geocold-grad-bench alone; then ours with the work-group sums of the slots off and on;
+#      geocold-grad-bench alone; then ours with adjoint work-items of 16, 4 and 1 samples;
 #   2. the peak OpenCL buffer bytes at depth 6 and depth 64 (our count; both in one process,
 #      then each depth in a process of its own under nvidia-smi sampling the GPU's used memory (the driver's
 #      figure, contexts and program binaries included);
@@ -95,11 +95,11 @@ else
     echo "== no Mitsuba (GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh carries it): ours alone" >> "$log"
     step "speed-$gpu" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 fi
-# What the work-group sums of the slots give (auto turns them on on GPUs): the same iterations
-# with them off and on, in one process each, one after the other.
-for group in off on; do
-    step "speed-$gpu-group-sums-$group" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory \
-        --group-sums "$group" "$@"
+# How the adjoint's work is cut: work-items of 16 samples of a pixel (every sample at 512x512
+# 16 spp: one item per pixel), 4, and 1 (the GPU's default), in one process each.
+for per in 16 4 1; do
+    step "speed-$gpu-samples-per-item-$per" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory \
+        --samples-per-item "$per" "$@"
 done
 step speed-pocl "$bench" --device cpu --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 
