@@ -9,7 +9,7 @@
 #   4. the gradients against Mitsuba (gradients.sh, with Mitsuba where
 #      `GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh` carried it; issue 43);
 #   5. one round of the multi-device runs (issue 41);
-#   6. the Sobol sampler's cost against the independent one;
+#   6. the Sobol sampler's cost against the independent one (GEOCOLD_SKIP_SAMPLER_COST=1 leaves it out);
 #   7. the Python/CLI parity (python-parity.sh; GEOCOLD_SKIP_PYTHON=1 leaves it out) and, with
 #      the time left, a second round of the multi-device runs.
 # Each step has its own time limit within GEOCOLD_SESSION_SECONDS (default 560); the logs end
@@ -54,7 +54,7 @@ fi
 # The Sobol sampler's cost on the GPU: the Cornell box and the dragon, independent and sobol
 # alternated, three rounds (docs/performance.md reads the samples/s lines).
 for round in 1 2 3; do
-    [ "$(left)" -gt 25 ] || break
+    [ "${GEOCOLD_SKIP_SAMPLER_COST:-0}" != 1 ] && [ "$(left)" -gt 25 ] || break
     for sampler in independent sobol; do
         for s in scenes/cornell-box/CornellBox-Original.obj $dragon; do
             echo "r$round $sampler $(basename "$s"): $(timeout 30 build/bare/geocold-cl "$s" --device gpu --res 1024x1024 \
