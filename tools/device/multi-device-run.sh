@@ -6,7 +6,8 @@
 # of 128 and one chunk (the per-chunk cost). Prints each run's samples/s line, each device's
 # chunks, busy time and last-chunk time (-v) and the image hashes.
 # Usage: OUT=<folder> tools/device/multi-device-run.sh [build|runs|all (default)] [scenes, default:
-# cornell dragon large]; ROUNDS (default 2) rounds of each scene's runs.
+# cornell dragon large]; ROUNDS (default 2) rounds of each scene's runs; MULTI_DEVICE_QUICK=1 runs
+# only gpu, cpu and all (no chunk-size variants).
 set -uo pipefail
 log=$OUT/run.log
 what=${1:-all}
@@ -47,7 +48,7 @@ for scene in $scenes; do
     run "$scene gpu   r$round" $s --device gpu --res 1024x1024 --spp $spp
     run "$scene cpu   r$round" $s --device cpu --threads 15 --res 1024x1024 --spp 64
     run "$scene all   r$round" $s --device all --res 1024x1024 --spp $spp
-    [[ $scene == large ]] && continue
+    [[ $scene == large || ${MULTI_DEVICE_QUICK:-0} == 1 ]] && continue
     run "$scene gpu1chunk r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples $spp
     run "$scene gpu c128 r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples 128
     run "$scene all c128 r$round" $s --device all --res 1024x1024 --spp $spp --chunk-samples 128
