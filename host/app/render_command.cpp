@@ -248,7 +248,8 @@ ExitCode run_render(const Options& options)
                     (d.failure.empty() ? "" : ", failed: " + d.failure) +
                     (d.left_slow ? ", left the frame: under a tenth of the other devices' rate" : ""));
     log_verbose("frame: " + fixed(outcome.seconds, 3) + " s rendering (every device set up), " +
-                fixed(outcome.seconds_with_setup, 3) + " s with the set-ups");
+                fixed(outcome.seconds_with_setup, 3) + " s with the set-ups, then " + fixed(outcome.cleanup_seconds, 3) +
+                " s releasing the devices");
     const double render_seconds = outcome.seconds;
     if (options.partial) pixel_samples = std::uint64_t(settings.width) * settings.height * samples;
     const double samples_per_second = static_cast<double>(pixel_samples) / std::max(render_seconds, 1e-9);

@@ -74,6 +74,7 @@ struct Shared {
     bool rounds_over = false;  // a pick left no pixel: no more rounds
     std::shared_ptr<const std::vector<std::uint32_t>> pixels;  // the round's pick; null: every pixel
     std::uint32_t sunk_count = 0;  // complete chunks through the sink (under sink_mutex)
+    std::optional<Clock::time_point> last_sunk;  // the sink's last return (under sink_mutex)
     std::exception_ptr round_error;  // a pick that threw: the frame stops and render_chunks rethrows it
     std::vector<std::atomic<std::uint32_t>> progress;     // samples of its current chunk, per device
     std::vector<std::atomic<double>> chunk_started;       // when it started its current chunk (frame seconds)
@@ -466,6 +467,7 @@ private:
             handoff.hand_off(renderer, [&shared, &job, range](FilmSums&& sums) {
                 std::lock_guard lock(shared.sink_mutex);
                 job.sink(range, std::move(sums), true);
+                shared.last_sunk = Clock::now();
                 ++shared.sunk_count;
                 if (job.rounds.active()) start_next_round_if_due(shared);
             });
@@ -475,6 +477,7 @@ private:
             FilmSums sums = renderer.sums(m_with_squares);
             std::lock_guard lock(m_shared.sink_mutex);
             m_job.sink(cut, std::move(sums), false);
+            m_shared.last_sunk = Clock::now();
         }
     }
 
@@ -516,9 +519,13 @@ FrameOutcome render_chunks(const std::vector<cl::DeviceInfo>& devices, const Pre
     if (shared.round_error) std::rethrow_exception(shared.round_error);
     outcome.cancelled = shared.cancelled;
     outcome.timed_out = shared.timed_out;
-    const auto ended = Clock::now();
+    // The frame ends with its last chunk in the sink; the devices' clean-up after it (an
+    // OpenCL context's release takes tens of milliseconds on NVIDIA's driver) is not rendering.
+    const auto returned = Clock::now();
+    const auto ended = shared.last_sunk ? *shared.last_sunk : returned;
     outcome.seconds = seconds_between(shared.start ? *shared.start : called, ended);
     outcome.seconds_with_setup = seconds_between(called, ended);
+    outcome.cleanup_seconds = seconds_between(ended, returned);
     const bool stopped = shared.cancelled || shared.timed_out;
     if (!stopped && shared.finished_count < shared.queued_end()) {
         for (const auto& e : errors)

@@ -64,8 +64,9 @@ struct DeviceReport {
 struct FrameOutcome {
     bool cancelled = false;
     bool timed_out = false;
-    double seconds = 0.0;  // from the start of rendering (every device set up) to the last chunk
-    double seconds_with_setup = 0.0;  // from the call, the set-ups included
+    double seconds = 0.0;  // from the start of rendering (every device set up) to the last chunk in the sink
+    double seconds_with_setup = 0.0;  // from the call to the last chunk in the sink, the set-ups included
+    double cleanup_seconds = 0.0;     // from the last chunk in the sink to the return (the devices released)
     std::vector<DeviceReport> devices;
 };
 
