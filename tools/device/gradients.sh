@@ -5,7 +5,8 @@
 #      512x512 16+16 spp, depth 6, on the GPU and on PoCL, against Mitsuba 3 cuda_ad_rgb prb
 #      in the same run where .deps/mitsuba is carried (GEOCOLD_PACK_MITSUBA=1; prb is one of
 #      Mitsuba's Python integrators, so the plugin cut of prepare-deps.sh keeps it), else
-#      geocold-grad-bench alone; then ours with adjoint work-items of 16, 4 and 1 samples;
+#      geocold-grad-bench alone; then ours with other cuts of the adjoint's work (samples per
+#      work-item, work-group sums); GEOCOLD_GRAD_SPEED_ONLY=1 stops there;
 #   2. the peak OpenCL buffer bytes at depth 6 and depth 64 (our count; both in one process,
 #      then each depth in a process of its own under nvidia-smi sampling the GPU's used memory (the driver's
 #      figure, contexts and program binaries included);
@@ -95,12 +96,13 @@ else
     echo "== no Mitsuba (GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh carries it): ours alone" >> "$log"
     step "speed-$gpu" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 fi
-# How the adjoint's work is cut: work-items of 16 samples of a pixel (every sample at 512x512
-# 16 spp: one item per pixel), 4, and 1 (the GPU's default), in one process each.
-for per in 16 4 1; do
-    step "speed-$gpu-samples-per-item-$per" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory \
-        --samples-per-item "$per" "$@"
+# How the adjoint's work is cut and summed: work-items of one sample of a pixel (the GPU's
+# default) with the work-group sums of the slots off and on, and of two samples, one process each.
+for way in 1:off 1:on 2:off; do
+    step "speed-$gpu-samples-per-item-${way%:*}-group-sums-${way#*:}" "$bench" --device "$gpu" --sizes "$sizes" \
+        --repeats "$repeats" --no-memory --samples-per-item "${way%:*}" --group-sums "${way#*:}" "$@"
 done
+[ "${GEOCOLD_GRAD_SPEED_ONLY:-0}" != 1 ] || { cat "$log"; exit "$status"; }
 step speed-pocl "$bench" --device cpu --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 
 # 2. Memory: our count, and nvidia-smi's used memory (the peak of 50 ms samples less the
