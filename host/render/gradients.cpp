@@ -120,6 +120,16 @@ std::uint32_t samples_per_item(std::uint32_t asked, bool gpu, std::uint32_t pixe
 
 }  // namespace
 
+// An optimiser calls backward once per step with the same sizes: its buffers stay allocated
+// between calls (a release and an allocation per call cost a GPU's driver time), made anew
+// only when a size changes.
+template <class T>
+cl::Buffer<T>& PathAdjoint::sized(cl::Buffer<T>& buffer, std::size_t count, cl_mem_flags flags, const char* name)
+{
+    if (!buffer || buffer.count() != count) buffer = cl::Buffer<T>::create(m_context, count, flags, name);
+    return buffer;
+}
+
 PathAdjoint::PathAdjoint(const Renderer& renderer, AdjointOptions options)
     : m_context(renderer.context()),
       m_options(options),
@@ -168,7 +178,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         throw UsageError("backward needs the host scene the renderer's device scene was made from");
     const SlotLayout layout = slot_layout(host_scene, refs);
     const std::uint32_t slot_count = layout.count;
-    auto view_slots = cl::read_only_buffer(m_context, layout.view_slots, "texel gradient slots");
+    cl::Buffer<std::uint32_t>& view_slots = sized(m_view_slots, layout.view_slots.size(), CL_MEM_READ_ONLY, "texel gradient slots");
+    view_slots.write(layout.view_slots);
 
     // Each sample's share of d loss / d (pixel mean).
     std::vector<glm::vec4> per_sample(pixels);
@@ -178,11 +189,10 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         for (int c = 0; c < 3; ++c)
             max_delta = std::max(max_delta, std::fabs(static_cast<double>(per_sample[i][c])));
     }
-    auto deltas = cl::read_only_buffer(m_context, per_sample, "loss gradient");
-    auto slots = cl::Buffer<std::uint64_t>::create(m_context, slot_count, CL_MEM_READ_WRITE,
-                                                   "gradient slots");
-    auto max_bits =
-        cl::Buffer<std::uint32_t>::create(m_context, 1, CL_MEM_READ_WRITE, "largest contribution");
+    cl::Buffer<glm::vec4>& deltas = sized(m_deltas, pixels, CL_MEM_READ_ONLY, "loss gradient");
+    deltas.write(per_sample);
+    cl::Buffer<std::uint64_t>& slots = sized(m_slots, slot_count, CL_MEM_READ_WRITE, "gradient slots");
+    cl::Buffer<std::uint32_t>& max_bits = sized(m_max_bits, 1, CL_MEM_READ_WRITE, "largest contribution");
 
     dev::GcRenderParams p = make_render_params(scene.summary, renderer.camera(), settings);
     set_environment_map(p, settings, scene.env_width, scene.env_height);

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "host/cl/buffer.h"
 #include "host/cl/kernel.h"
 #include "host/cl/program.h"
 #include "host/render/renderer.h"
@@ -78,6 +79,8 @@ public:
 
 private:
     void build(const Renderer& renderer);
+    template <class T>
+    cl::Buffer<T>& sized(cl::Buffer<T>& buffer, std::size_t count, cl_mem_flags flags, const char* name);
 
     const cl::Context& m_context;
     AdjointOptions m_options;
@@ -86,6 +89,10 @@ private:
     std::unique_ptr<cl::Program> m_program;
     cl::Kernel m_kernel;
     GradientStats m_stats;
+    cl::Buffer<glm::vec4> m_deltas;          // each sample's share of d loss / d pixel
+    cl::Buffer<std::uint64_t> m_slots;       // the fixed-point sums (gc_grad_slots.h)
+    cl::Buffer<std::uint32_t> m_max_bits;    // the largest contribution's float bits
+    cl::Buffer<std::uint32_t> m_view_slots;  // per texture view, its texels' first slot
 };
 
 }  // namespace gc
