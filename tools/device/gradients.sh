@@ -152,7 +152,7 @@ if command -v ptxas > /dev/null || [ -x /usr/local/cuda/bin/ptxas ]; then
         for f in "$dump"/*.bin; do
             [ -f "$f" ] || continue
             echo "== ptxas -v, $t, $(basename "$f") ($(grep -c '^\.entry\|\.entry ' "$f") entries)" >> "$log"
-            "$ptxas_bin" -arch=sm_90 -v "$f" -o /dev/null 2>&1 | grep -E "Compiling entry|Function properties|stack frame|registers" >> "$log"
+            "$ptxas_bin" -arch=sm_90 -v "$f" -o /dev/null 2>&1 | grep -E "Compiling entry|Function properties|stack frame|registers|error|fatal" >> "$log"
         done
     done
 fi
