@@ -178,7 +178,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         throw UsageError("backward needs the host scene the renderer's device scene was made from");
     const SlotLayout layout = slot_layout(host_scene, refs);
     const std::uint32_t slot_count = layout.count;
-    cl::Buffer<std::uint32_t>& view_slots = sized(m_view_slots, layout.view_slots.size(), CL_MEM_READ_ONLY, "texel gradient slots");
+    cl::Buffer<std::uint32_t>& view_slots =
+        sized(m_view_slots, layout.view_slots.size(), CL_MEM_READ_ONLY, "texel gradient slots");
     view_slots.write(layout.view_slots);
 
     // Each sample's share of d loss / d (pixel mean).

@@ -10,11 +10,12 @@
 // so the kernels of several devices compile at once; rendering starts when every device is set
 // up (or failed), so that no device renders on the cores another one's set-up needs. A device
 // pulls the next chunks off the queue (a GPU takes more at a time than a CPU, ask_size()),
-// renders each from a cleared film and hands its sums on. When the queue is empty, an idle device re-renders the chunk another
-// device has held longest, if it expects to finish it sooner (a backup, as MapReduce's backup
-// tasks): the first copy in wins and the other is abandoned at its next pass. On devices of one
-// kind the copies have the same bits; across kinds they agree within --consistency's tolerance,
-// which is then all a frame rendered on mixed devices promises.
+// renders each from a cleared film and hands its sums on. When the queue is empty, an idle
+// device re-renders the chunk another device has held longest, if it expects to finish it
+// sooner (a backup, as MapReduce's backup tasks): the first copy in wins and the other is
+// abandoned at its next pass. On devices of one kind the copies have the same bits; across
+// kinds they agree within --consistency's tolerance, which is then all a frame rendered on
+// mixed devices promises.
 //
 // A device that fails (its driver, its memory) drops out with a warning; its chunks go back to
 // the queue. The frame fails only when no device is left. A device far slower than the others
