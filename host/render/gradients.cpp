@@ -132,8 +132,7 @@ cl::Buffer<T>& PathAdjoint::sized(cl::Buffer<T>& buffer, std::size_t count, cl_m
 
 PathAdjoint::PathAdjoint(const Renderer& renderer, AdjointOptions options)
     : m_context(renderer.context()),
-      m_options(options),
-      m_group_sums(options.group_sums == GroupSums::On)
+      m_options(options)
 {
     build(renderer);
 }
@@ -143,7 +142,7 @@ void PathAdjoint::build(const Renderer& renderer)
     const DeviceScene& scene = renderer.device_scene();
     std::string options = scene_program_options(scene);
     if (m_options.atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
-    if (m_group_sums) options += " -D GC_GRAD_GROUP_SLOTS=" + std::to_string(k_group_slots) + "u";
+    if (group_sums()) options += " -D GC_GRAD_GROUP_SLOTS=" + std::to_string(k_group_slots) + "u";
     m_program =
         std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
@@ -213,7 +212,7 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     // One work-item per group on CPUs, as the megakernel (megakernel_path.cpp says why), unless
     // the groups sum their slots.
     const bool gpu = m_context.device().is_gpu;
-    const std::size_t local_size = gpu ? 0 : (m_group_sums ? 16 : 1);
+    const std::size_t local_size = gpu ? 0 : (group_sums() ? 16 : 1);
     const std::uint32_t per_item = samples_per_item(m_options.samples_per_item, gpu, pixels, spp);
     const std::size_t items = std::size_t(pixels) * ((spp + per_item - 1) / per_item);
     std::vector<std::uint64_t> sums(slot_count, 0);

@@ -79,12 +79,12 @@ public:
 
 private:
     void build(const Renderer& renderer);
+    bool group_sums() const { return m_options.group_sums == GroupSums::On; }  // Auto is off
     template <class T>
     cl::Buffer<T>& sized(cl::Buffer<T>& buffer, std::size_t count, cl_mem_flags flags, const char* name);
 
     const cl::Context& m_context;
     AdjointOptions m_options;
-    bool m_group_sums;
     KernelFeatures m_features;
     std::unique_ptr<cl::Program> m_program;
     cl::Kernel m_kernel;
