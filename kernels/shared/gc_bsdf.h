@@ -568,12 +568,22 @@ GC_FUNC GcMaterial gc_pbr_from_side(GcMaterial m, float side)
 }
 
 /* Relative index n(wi's side) / n(wo's side) for a refraction from wo's side, `side` as
- * gc_bsdf_side(wo): +1 outside. gc_pbr_ior, at least 1.001, because at 1
+ * gc_bsdf_side(wo): +1 outside. gc_pbr_ior, at least GC_PBR_MIN_TRANSMISSION_IOR, because at 1
  * the generalised half vector of a straight-through pair vanishes. */
+#define GC_PBR_MIN_TRANSMISSION_IOR 1.001f
 GC_FUNC float gc_pbr_transmission_eta(GcMaterial m, float side)
 {
-    const float ior = fmax(gc_pbr_ior(m), 1.001f);
+    const float ior = fmax(gc_pbr_ior(m), GC_PBR_MIN_TRANSMISSION_IOR);
     return side > 0.0f ? ior : 1.0f / ior;
+}
+
+/* The transmission facets' roughness. At an ior of 1 they bend no light, whatever their
+ * slopes, so they are smooth: the transmitted image stays sharp and, unlike a rough lobe at
+ * eta 1.001, loses nothing to masking (Khronos' TransmissionRoughnessTest, row "1.0 - Air";
+ * pbrt-v4's dielectric passes straight through at eta 1 likewise). */
+GC_FUNC float gc_pbr_transmission_alpha(GcMaterial m)
+{
+    return gc_pbr_ior(m) < GC_PBR_MIN_TRANSMISSION_IOR ? GC_PBR_MIN_ALPHA : gc_pbr_alpha(m);
 }
 
 /* The rough btdf for wo above (wo.z > 0) and wi below (wi.z < 0), eta from
@@ -589,7 +599,7 @@ GC_FUNC float3 gc_pbr_rough_transmission_eval_lower(GcMaterial m, float3 base, f
     const float dot_i = gc_dot(wi, wm);
     /* The facet must face wo and be crossed by wi (else the pair is not a refraction). */
     if (!(dot_o > 0.0f) || !(dot_i < 0.0f)) return zero;
-    const float alpha = gc_pbr_alpha(m);
+    const float alpha = gc_pbr_transmission_alpha(m);
     const float denom = eta * dot_i + dot_o;
     const float btdf = gc_ggx_d(wm, alpha) * gc_ggx_g2(wo, wi, alpha) * (-dot_i) * dot_o /
                        (wo.z * (-wi.z) * denom * denom);
@@ -612,7 +622,7 @@ GC_FUNC float gc_pbr_rough_transmission_pdf_lower(GcMaterial m, float3 wo, float
     const float dot_o = gc_dot(wo, wm);
     const float dot_i = gc_dot(wi, wm);
     if (!(dot_o > 0.0f) || !(dot_i < 0.0f)) return 0.0f;
-    const float alpha = gc_pbr_alpha(m);
+    const float alpha = gc_pbr_transmission_alpha(m);
     const float denom = eta * dot_i + dot_o;
     const float d_visible = gc_ggx_g1(wo, alpha) * dot_o * gc_ggx_d(wm, alpha) / wo.z;
     return d_visible * eta * eta * (-dot_i) / (denom * denom);
@@ -622,7 +632,7 @@ GC_FUNC float gc_pbr_rough_transmission_pdf_lower(GcMaterial m, float3 wo, float
  * facet, or a refraction that stays above the surface) means no sample. */
 GC_FUNC float3 gc_pbr_sample_rough_transmission(GcMaterial m, float3 wo, float eta, float u1, float u2)
 {
-    const float3 wm = gc_ggx_sample_visible_normal(wo, gc_pbr_alpha(m), u1, u2);
+    const float3 wm = gc_ggx_sample_visible_normal(wo, gc_pbr_transmission_alpha(m), u1, u2);
     const float cos_o = gc_dot(wo, wm);
     const float sin2_t = (1.0f - cos_o * cos_o) / (eta * eta);
     if (!(sin2_t < 1.0f) || !(cos_o > 0.0f)) return make_float3(0.0f, 0.0f, 1.0f);

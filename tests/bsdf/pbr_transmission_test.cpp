@@ -228,5 +228,31 @@ TEST(PbrTransmission, SmoothLimitAtNormalIncidence)
     EXPECT_NEAR(mean, expected, 0.01 * expected + 4.0 * se);
 }
 
+// At ior 1 the facets bend no light, however rough (Khronos' TransmissionRoughnessTest, row
+// "1.0 - Air"): every transmitted sample goes straight through, and none is lost to masking, so
+// white glass of roughness 1 seen head-on transmits (1 - F) of what it receives, F being the
+// Schlick weight at normal incidence with F0 = 0, i.e. 0.
+TEST(PbrTransmission, IorOneStaysSharpAtAnyRoughness)
+{
+    const GcMaterial m = rough_glass(grey(1.0f), 1.0f, 1.0f, 1.0f);
+    const float3 wo = dir_deg(20);
+    Uniform u(5);
+    const int n = 100000;
+    double transmitted = 0.0, worst_cos = 1.0;
+    for (int k = 0; k < n; ++k) {
+        const GcBsdfSample s = draw(m, wo, u);
+        if ((s.flags & GC_BSDF_TRANSMISSION) == 0u) continue;
+        transmitted += gc_luminance(s.weight);
+        worst_cos = std::min(worst_cos, -static_cast<double>(gc_dot(s.wi, wo)));
+    }
+    const double mean = transmitted / n;
+    const double expected = 1.0 - std::pow(1.0 - std::cos(20.0 * 3.14159265358979 / 180.0), 5.0);
+    std::printf("[ior 1] transmitted %.4f (expected %.4f); the widest transmitted direction is %.3f degrees off "
+                "straight through\n",
+                mean, expected, std::acos(std::min(1.0, worst_cos)) * 180.0 / 3.14159265358979);
+    EXPECT_GT(worst_cos, std::cos(1.0 * 3.14159265358979 / 180.0));
+    EXPECT_NEAR(mean, expected, 0.01);
+}
+
 }  // namespace
 }  // namespace gc::dev
