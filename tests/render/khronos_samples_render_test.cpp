@@ -88,6 +88,23 @@ int nearest(const std::vector<float>& centres, float x)
     return best;
 }
 
+// Makes the backdrop of Ed Mackey's test models (material "FlatBackdrop") reflect nothing and
+// emit: its own pattern (the base colour texture) where `patterned`, else a plain white.
+// Returns how many materials it changed.
+int make_backdrop_emit(Scene& s, bool patterned)
+{
+    int changed = 0;
+    for (Material& m : s.materials)
+        if (m.name == "FlatBackdrop") {
+            m.emission = glm::vec3(1.0f);
+            m.emission_texture = patterned ? m.albedo_texture : -1;
+            m.albedo = glm::vec3(0.0f);
+            m.albedo_texture = -1;
+            ++changed;
+        }
+    return changed;
+}
+
 // The mean radiance of a set of pixels.
 struct Region {
     glm::dvec3 sum{0.0};
@@ -213,16 +230,7 @@ class SampleModelTest : public cl::test::DeviceTest {};
 TEST_F(SampleModelTest, TransmissionRoughnessTestBlursMoreAtHigherIor)
 {
     Scene rough = load_sample("TransmissionRoughnessTest");
-    int backdrops = 0;
-    for (Material& m : rough.materials)
-        if (m.name == "FlatBackdrop") {
-            m.emission = glm::vec3(1.0f);
-            m.emission_texture = m.albedo_texture;
-            m.albedo = glm::vec3(0.0f);
-            m.albedo_texture = -1;
-            ++backdrops;
-        }
-    ASSERT_EQ(backdrops, 1);
+    ASSERT_EQ(make_backdrop_emit(rough, true), 1);
     const std::vector<std::string> rows = {"Mat_IOR_1.0", "Mat_IOR_1.33", "Mat_IOR_1.50", "Mat_IOR_1.76",
                                            "Mat_IOR_2.42"};
     Scene smooth = rough;
@@ -295,15 +303,7 @@ TEST_F(SampleModelTest, TransmissionRoughnessTestBlursMoreAtHigherIor)
 TEST_F(SampleModelTest, AttenuationTestColumnsShowTheSpecifiedTransmittance)
 {
     Scene tinted = load_sample("AttenuationTest");
-    int backdrops = 0;
-    for (Material& m : tinted.materials)
-        if (m.name == "FlatBackdrop") {
-            m.albedo = glm::vec3(0.0f);
-            m.albedo_texture = -1;
-            m.emission = glm::vec3(1.0f);
-            ++backdrops;
-        }
-    ASSERT_EQ(backdrops, 1);
+    ASSERT_EQ(make_backdrop_emit(tinted, false), 1);
     Scene clear = tinted;
     for (Material& m : clear.materials) {
         if (m.layers.volume_on) m.layers.attenuation_color = glm::vec3(1.0f);
