@@ -11,12 +11,19 @@ By default metallic and roughness are dropped (a Lambert reference checks geomet
 uvs and textures). With pbr=True (make_reference.py --pbr) each material also gets the PBR-MTL
 keys Pm / Pr (metallicFactor / roughnessFactor), map_Pmr (glTF's packed metallicRoughness
 texture) and norm (normalTexture), which mitsuba_scene.py maps to Mitsuba's `principled`.
+
+Smooth, full, non-metal KHR_materials_transmission (transmissionFactor 1, roughness 0, metallic
+0, no transmission texture) becomes a dielectric: the key Ptr (its KHR_materials_ior) and, for
+a KHR_materials_volume (thicknessFactor > 0), Pabs with the absorption coefficients
+-ln(attenuationColor) / attenuationDistance; without a volume it is thin-walled. Kd stays the
+base colour, which tints what passes. Any other transmission stays Lambert, with a warning.
 """
 
 from __future__ import annotations
 
 import base64
 import json
+import math
 import os
 import struct
 
@@ -114,6 +121,28 @@ def _texture_file(gltf: Gltf, tex: dict, out_dir: str) -> str:
     return os.path.abspath(gltf.image_file(texture["source"], out_dir))
 
 
+def _write_transmission(f, path: str, index: int, mat: dict) -> None:
+    """The Ptr / Pabs keys of a smooth transmissive material (see the module's docstring)."""
+    ext = mat.get("extensions", {})
+    transmission = ext.get("KHR_materials_transmission")
+    if transmission is None or transmission.get("transmissionFactor", 0.0) <= 0.0:
+        return
+    pbr = mat.get("pbrMetallicRoughness", {})
+    if (transmission.get("transmissionFactor") != 1.0 or "transmissionTexture" in transmission
+            or pbr.get("roughnessFactor", 1.0) != 0.0 or pbr.get("metallicFactor", 1.0) != 0.0
+            or "metallicRoughnessTexture" in pbr):
+        print(f"warning: {path}: material {index} ({mat.get('name', '')}): only smooth, full, non-metal "
+              "transmission becomes a dielectric; this one stays Lambert")
+        return
+    f.write(f"Ptr {ext.get('KHR_materials_ior', {}).get('ior', 1.5)}\n")
+    volume = ext.get("KHR_materials_volume")
+    if volume is not None and volume.get("thicknessFactor", 0.0) > 0.0:
+        distance = volume.get("attenuationDistance", math.inf)
+        colour = volume.get("attenuationColor", [1.0, 1.0, 1.0])
+        sigma = [0.0 if math.isinf(distance) else -math.log(max(c, 1e-30)) / distance for c in colour]
+        f.write(f"Pabs {sigma[0]:.9g} {sigma[1]:.9g} {sigma[2]:.9g}\n")
+
+
 def _write_mtl(gltf: Gltf, path: str, out_dir: str, pbr_mode: bool = False) -> list[str]:
     names = []
     with open(path, "w") as f:
@@ -137,6 +166,7 @@ def _write_mtl(gltf: Gltf, path: str, out_dir: str, pbr_mode: bool = False) -> l
                 if sampler.get("wrapS", 10497) != 10497 or sampler.get("wrapT", 10497) != 10497:
                     print(f"warning: {gltf.path}: material {i}: only REPEAT wrapping is reproduced")
                 f.write(f"map_Kd {os.path.abspath(gltf.image_file(texture['source'], out_dir))}\n")
+            _write_transmission(f, gltf.path, i, mat)
             if pbr_mode:
                 f.write(f"Pm {pbr.get('metallicFactor', 1.0)}\nPr {pbr.get('roughnessFactor', 1.0)}\n")
                 if "metallicRoughnessTexture" in pbr:

@@ -150,6 +150,7 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         groups = load_groups(scene_path, tmp, args.pbr)
         scene = build_scene(groups, cam, max_depth, env, args.seed)
+        has_media = any(g.material.absorption is not None for g in groups)
         width, height = cam["res"]
         total = np.zeros((height, width, 3), dtype=np.float64)
         total_sq = np.zeros_like(total)
@@ -187,7 +188,8 @@ def main(argv=None):
         "spp": spp,
         "max_depth": max_depth,
         "env": env,
-        "renderer": f"Mitsuba {mi.__version__}, {args.variant} variant, path integrator (NEE + MIS), "
+        "renderer": f"Mitsuba {mi.__version__}, {args.variant} variant, "
+                    f"{'volpathmis' if has_media else 'path'} integrator (NEE + MIS), "
                     "box filter, independent sampler" + (", glTF materials as principled" if args.pbr else ""),
         "variance": os.path.basename(variance_path),
         "variance_estimator": f"per-sample variance from {passes} passes of {args.pass_spp} spp",

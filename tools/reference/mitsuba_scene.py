@@ -8,6 +8,13 @@ The material mapping is the conventions table of /work/shared/refs/README.md:
   non-dielectrics     two-sided
 (illum 8, 9, 10 are not in the table; they follow geocold-cl's OBJ loader.)
 
+glTF smooth transmission (gltf_to_obj.py's Ptr / Pabs): with a volume, a `dielectric` of its
+IOR whose transmittance is the base colour, over a `homogeneous` purely absorbing interior
+medium (the scene then renders with `volpathmis`); thin-walled, glTF's delta pair at normal
+incidence: a blend of a mirror of weight F0 = ((ior - 1) / (ior + 1))^2 and a pass-through
+tinted by the base colour (a `thindielectric` of IOR 1), which differs from glTF's Schlick
+weights away from normal incidence.
+
 Mitsuba 3 has no additive BSDF, so the diffuse + mirror sum is a blendbsdf with weight w:
     (1 - w) * diffuse(Kd / (1 - w)) + w * conductor(Ks / w) = Kd/pi + delta * Ks
 with `conductor` of material "none" (reflectance exactly 1, i.e. no Fresnel). w is the mirror's
@@ -76,7 +83,20 @@ def principled_bsdf(material) -> dict:
     return {"type": "twosided", "bsdf": bsdf}
 
 
+def transmission_bsdf(material) -> dict:
+    tint = _rgb(material.kd)
+    if material.absorption is not None:
+        return {"type": "dielectric", "int_ior": float(material.transmission_ior), "ext_ior": 1.0,
+                "specular_transmittance": tint}
+    f0 = ((material.transmission_ior - 1.0) / (material.transmission_ior + 1.0)) ** 2
+    return {"type": "blendbsdf", "weight": float(f0),
+            "bsdf_0": {"type": "thindielectric", "int_ior": 1.0, "ext_ior": 1.0, "specular_transmittance": tint},
+            "bsdf_1": {"type": "conductor", "material": "none"}}
+
+
 def material_bsdf(material) -> dict:
+    if material.transmission_ior is not None:
+        return transmission_bsdf(material)
     if material.pbr:
         return principled_bsdf(material)
     if material.illum in DIELECTRIC_ILLUM:
@@ -110,6 +130,13 @@ def material_bsdf(material) -> dict:
 def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
     props = mi.Properties()
     props["bsdf"] = mi.load_dict(material_bsdf(group.material))
+    if group.material.absorption is not None:
+        # An RGB value here is read as a reflectance (at most 1): the largest coefficient goes
+        # into the medium's scale.
+        sigma = np.asarray(group.material.absorption, dtype=np.float64)
+        largest = max(float(sigma.max()), 1e-30)
+        props["interior"] = mi.load_dict({"type": "homogeneous", "sigma_t": _rgb(sigma / largest), "scale": largest,
+                                          "albedo": _rgb((0.0, 0.0, 0.0))})
     if max(group.material.ke) > 0:
         # Mitsuba's area light is one-sided: it emits on the side the triangle's normal
         # (counter-clockwise winding) faces, as the convention asks.
@@ -132,6 +159,11 @@ def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
 
 def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path") -> mi.Scene:
     width, height = camera["res"]
+    if integrator == "path" and any(g.material.absorption is not None for g in groups):
+        # The same estimator with the media the path integrator ignores; volpathmis weighs the
+        # distance sampling of the three channels by MIS (volpath samples one channel's distance,
+        # so a colour absorbed at very different rates gets fireflies in the others).
+        integrator = "volpathmis"
     scene = {
         "type": "scene",
         "integrator": {"type": integrator, "max_depth": int(max_depth)},

@@ -36,6 +36,10 @@ class ObjMaterial:
     roughness: float = 1.0
     map_mr: str | None = None  # glTF metallicRoughness texture: B = metal, G = roughness (linear)
     map_norm: str | None = None  # tangent-space normal map (linear)
+    # glTF smooth transmission (gltf_to_obj.py's Ptr / Pabs keys): its index of refraction, and
+    # the absorption coefficients of its volume (None: thin-walled)
+    transmission_ior: float | None = None
+    absorption: tuple | None = None
 
 
 DEFAULT_MATERIAL = ObjMaterial(name="<default>", kd=(0.5, 0.5, 0.5), illum=0)
@@ -88,6 +92,10 @@ def read_mtl(path: str, materials: dict[str, ObjMaterial]) -> None:
                 current.pbr, current.metallic = True, _floats(rest, 1, where)[0]
             elif key == "Pr":
                 current.pbr, current.roughness = True, _floats(rest, 1, where)[0]
+            elif key == "Ptr":
+                current.transmission_ior = _floats(rest, 1, where)[0]
+            elif key == "Pabs":
+                current.absorption = _floats(rest, 3, where)
             elif key == "map_Pmr" and rest:
                 current.map_mr = os.path.normpath(os.path.join(base, rest[-1]))
             elif key == "norm" and rest:
