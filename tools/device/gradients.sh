@@ -97,10 +97,13 @@ else
     step "speed-$gpu" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 fi
 # How the adjoint's work is cut and summed: work-items of one sample of a pixel (the GPU's
-# default) with the work-group sums of the slots off and on, and of two samples, one process each.
-for way in 1:off 1:on 2:off; do
-    step "speed-$gpu-samples-per-item-${way%:*}-group-sums-${way#*:}" "$bench" --device "$gpu" --sizes "$sizes" \
-        --repeats "$repeats" --no-memory --samples-per-item "${way%:*}" --group-sums "${way#*:}" "$@"
+# default) with the work-group sums of the slots off and on, and of two samples, one process
+# each; for one parameter and for the seven walls, whose every hit adds to a slot (the atomics'
+# contention the group sums are for).
+for way in leftWall:1:off leftWall:1:on leftWall:2:off walls:1:off walls:1:on; do
+    IFS=: read -r which per_item sums <<< "$way"
+    step "speed-$gpu-$which-samples-per-item-$per_item-group-sums-$sums" "$bench" --device "$gpu" --sizes "$sizes" \
+        --repeats "$repeats" --no-memory --params "$which" --samples-per-item "$per_item" --group-sums "$sums" "$@"
 done
 [ "${GEOCOLD_GRAD_SPEED_ONLY:-0}" != 1 ] || { cat "$log"; exit "$status"; }
 step speed-pocl "$bench" --device cpu --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
