@@ -29,6 +29,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -53,11 +54,15 @@ struct RefCase {
     std::uint32_t spp;  // test spp: the label's time budget
     // glTF references are Lambert (tools/reference/README.md: metallic-roughness becomes a
     // Lambert baseColor); the test renders those materials as Lambert too, so what it checks
-    // is geometry, node transforms, uvs and textures, not the GGX lobe. Smooth transmission
-    // stays as it is: its reference is a dielectric (over an absorbing medium for a
-    // KHR_materials_volume), which the glTF model matches at normal incidence.
+    // is geometry, node transforms, uvs and textures, not the GGX lobe. Transmission and metals
+    // stay as they are: their reference is a Mitsuba dielectric (over an absorbing medium for a
+    // KHR_materials_volume) or conductor, GGX where rough, which the glTF model matches at
+    // normal incidence (tools/reference/README.md).
     bool pbr_as_lambert = false;
     SamplerKind sampler = SamplerKind::Independent;
+    // Where the two material models differ by a known, documented amount, the image means may
+    // differ by this fraction per channel instead of being within their noise (0: within noise).
+    double model_mean_difference = 0.0;
 };
 
 void PrintTo(const RefCase& c, std::ostream* os) { *os << c.name << " (" << sampler_name(c.sampler) << ")"; }
@@ -157,15 +162,32 @@ struct Comparison {
     NoiseModel noise;
     double rel_mse_bound = 0;
 
+    double mean_ratio[3] = {1, 1, 1};  // test mean / reference mean per channel
+    double model_mean_difference = 0.0;
+
     bool z_ok() const { return z.pass_fraction >= kZPassMin; }
     bool rel_mse_ok() const { return diff.rel_mse <= rel_mse_bound; }
-    bool mean_ok(int c) const { return noise.mean_z[c] < kMeanZMax; }
+    bool mean_ok(int c) const
+    {
+        return model_mean_difference > 0.0 ? std::fabs(mean_ratio[c] - 1.0) <= model_mean_difference
+                                           : noise.mean_z[c] < kMeanZMax;
+    }
     bool passed() const { return diff.nonfinite == 0 && z_ok() && rel_mse_ok() && mean_ok(0) && mean_ok(1) && mean_ok(2); }
 };
 
-Comparison compare(const validation::Rendered& got, const Reference& ref, std::uint32_t spp, const char* name)
+Comparison compare(const validation::Rendered& got, const Reference& ref, std::uint32_t spp, const char* name,
+                   double model_mean_difference = 0.0)
 {
     Comparison out;
+    out.model_mean_difference = model_mean_difference;
+    double sum_test[3] = {0, 0, 0}, sum_ref[3] = {0, 0, 0};
+    for (std::uint32_t y = 0; y < ref.image.height(); ++y)
+        for (std::uint32_t x = 0; x < ref.image.width(); ++x)
+            for (int c = 0; c < 3; ++c) {
+                sum_test[c] += got.mean.pixel(x, y)[c];
+                sum_ref[c] += ref.image.pixel(x, y)[c];
+            }
+    for (int c = 0; c < 3; ++c) out.mean_ratio[c] = sum_test[c] / std::max(sum_ref[c], 1e-30);
     const Film variance = combined_variance(got.variance, ref, spp);
     out.z = z_test(got.mean, spp, ref.image, variance, kAlpha, kVarianceFloor);
     out.diff = compare_images(got.mean, ref.image);
@@ -178,9 +200,25 @@ Comparison compare(const validation::Rendered& got, const Reference& ref, std::u
                 100.0 * out.z.pass_fraction, out.z.tested, 100.0 * kZPassMin, out.z.alpha_sidak, out.z.max_z);
     std::printf("  rel MSE %.3e, bound %.3e (= 2 x predicted %.3e + 1e-4; acceptance 2e-3 scaled to %u spp: %.3e)\n",
                 out.diff.rel_mse, out.rel_mse_bound, out.noise.predicted_rel_mse, spp, 2e-3 * 1024.0 / spp);
-    std::printf("  image mean z (R G B): %.2f %.2f %.2f (max %.1f); nonfinite %zu\n", out.noise.mean_z[0],
-                out.noise.mean_z[1], out.noise.mean_z[2], kMeanZMax, out.diff.nonfinite);
+    std::printf("  image mean z (R G B): %.2f %.2f %.2f (max %.1f); test / reference %.4f %.4f %.4f", out.noise.mean_z[0],
+                out.noise.mean_z[1], out.noise.mean_z[2], kMeanZMax, out.mean_ratio[0], out.mean_ratio[1],
+                out.mean_ratio[2]);
+    if (model_mean_difference > 0.0) std::printf(" (the models' difference: within %.3f)", model_mean_difference);
+    std::printf("; nonfinite %zu\n", out.diff.nonfinite);
     return out;
+}
+
+// The least and the largest metallic a material has: its factor, times its texture's B where
+// it has one.
+std::pair<float, float> metallic_range(const Scene& scene, const Material& m)
+{
+    if (m.metallic_roughness_texture < 0) return {m.metallic, m.metallic};
+    std::uint32_t lo = 255, hi = 0;
+    for (std::uint32_t texel : scene.textures[static_cast<std::size_t>(m.metallic_roughness_texture)].texels) {
+        lo = std::min(lo, (texel >> 16) & 0xffu);
+        hi = std::max(hi, (texel >> 16) & 0xffu);
+    }
+    return {m.metallic * static_cast<float>(lo) / 255.0f, m.metallic * static_cast<float>(hi) / 255.0f};
 }
 
 fs::path reference_json(const char* name)
@@ -203,20 +241,22 @@ TEST_P(ReferenceTest, MatchesMitsubaWithinNoise)
     Scene scene = load_scene(ref.scene);
     if (c.pbr_as_lambert)
         for (Material& m : scene.materials)
-            if (m.type == MaterialType::Pbr && m.transmission == 0.0f) {
-                ASSERT_EQ(m.metallic, 0.0f) << m.name << ": a Lambert reference needs metallic 0";
+            if (m.type == MaterialType::Pbr && m.transmission == 0.0f && metallic_range(scene, m).first < 1.0f) {
+                ASSERT_EQ(metallic_range(scene, m).second, 0.0f) << m.name << ": a Lambert reference needs metallic 0";
                 m.type = MaterialType::Lambert;
             }
     const validation::Rendered got = validation::render(*context, scene, ref.camera, ref.settings);
     ASSERT_EQ(got.mean.width(), ref.image.width());
     ASSERT_EQ(got.mean.height(), ref.image.height());
     std::printf("device: %s\n", context->device().device_name.c_str());
-    const Comparison cmp = compare(got, ref, c.spp, c.name);
+    const Comparison cmp = compare(got, ref, c.spp, c.name, c.model_mean_difference);
 
     EXPECT_EQ(cmp.diff.nonfinite, 0u);
     EXPECT_TRUE(cmp.z_ok()) << "Z-test pass fraction " << cmp.z.pass_fraction;
     EXPECT_TRUE(cmp.rel_mse_ok()) << "rel MSE " << cmp.diff.rel_mse << " > " << cmp.rel_mse_bound;
-    for (int k = 0; k < 3; ++k) EXPECT_TRUE(cmp.mean_ok(k)) << "image mean z " << cmp.noise.mean_z[k] << ", channel " << k;
+    for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(cmp.mean_ok(k)) << "image mean z " << cmp.noise.mean_z[k] << ", test / reference "
+                                    << cmp.mean_ratio[k] << ", channel " << k;
     if (HasFailure()) {
         const ImageMetadata meta{context->device().device_name, "path", ref.scene.string(), c.spp, got.seconds, 1};
         write_image(validation::failure_path(std::string(c.name) + "-test.exr"), got.mean, meta);
@@ -290,6 +330,12 @@ TEST_F(ReferenceTest, SobolSamplesHaveLessErrorAtEqualSpp)
 // use (the box's lights and walls, the lens's two dimensions, an environment and glass).
 // Khronos' AttenuationTest checks KHR_materials_volume against Mitsuba's absorbing medium (a
 // 20 % error in the absorption moves the image mean by 17-49 standard errors).
+// TransmissionRoughnessTest checks rough KHR_materials_transmission against Mitsuba's GGX
+// roughdielectric, pixel by pixel (the blur: alpha = roughness^2 per texel); its image mean
+// may be up to 5 % darker: glTF's transmission is weighted by 1 - F at its own facet and the
+// reflection by F at another (the spec's Fresnel mix of two lobes), where Mitsuba splits one
+// facet's light exactly, and at roughness 1 and IOR 1.76-2.42 the mix loses 10-17 % more
+// (ours / Mitsuba per 16x16 block; 0.986 / 0.975 / 0.963 over the image, R G B, on PoCL).
 INSTANTIATE_TEST_SUITE_P(Refs, ReferenceTest,
                          ::testing::Values(RefCase{"cornell-original", 128}, RefCase{"cornell-mirror", 128},
                                            RefCase{"cornell-sphere", 128}, RefCase{"spot-env", 128},
@@ -299,7 +345,9 @@ INSTANTIATE_TEST_SUITE_P(Refs, ReferenceTest,
                                            RefCase{"cornell-sphere-dof", 128, false, SamplerKind::Sobol},
                                            RefCase{"spot-env", 128, false, SamplerKind::Sobol},
                                            RefCase{"normals-flipped-glass", 256, false, SamplerKind::Sobol},
-                                           RefCase{"attenuation-test", 128, true}),
+                                           RefCase{"attenuation-test", 128, true},
+                                           RefCase{"transmission-roughness-test", 128, true, SamplerKind::Independent,
+                                                   0.05}),
                          [](const ::testing::TestParamInfo<RefCase>& param_info) {
                              std::string name = param_info.param.name;
                              for (char& ch : name)

@@ -12,11 +12,16 @@ uvs and textures). With pbr=True (make_reference.py --pbr) each material also ge
 keys Pm / Pr (metallicFactor / roughnessFactor), map_Pmr (glTF's packed metallicRoughness
 texture) and norm (normalTexture), which mitsuba_scene.py maps to Mitsuba's `principled`.
 
-Smooth, full, non-metal KHR_materials_transmission (transmissionFactor 1, roughness 0, metallic
-0, no transmission texture) becomes a dielectric: the key Ptr (its KHR_materials_ior) and, for
-a KHR_materials_volume (thicknessFactor > 0), Pabs with the absorption coefficients
--ln(attenuationColor) / attenuationDistance; without a volume it is thin-walled. Kd stays the
-base colour, which tints what passes. Any other transmission stays Lambert, with a warning.
+Two kinds of glTF material become more than Lambert, in either mode (the Lambert reference
+would misrepresent them): full KHR_materials_transmission (transmissionFactor 1, no
+transmission texture) becomes a dielectric, with the key Ptr (its KHR_materials_ior) and, for a
+KHR_materials_volume, Pabs with the absorption coefficients -ln(attenuationColor) /
+attenuationDistance (zeros without an attenuation; smooth without a volume it is thin-walled);
+a metal (metallicFactor 1, not transmissive) becomes a conductor, with the key Pmetal. Both get
+Pgr, the roughnessFactor, and map_Pgr, the metallicRoughness texture (its G the roughness;
+mitsuba_scene.py checks that its B, the metallic, is 0 throughout for a dielectric and 1 for a
+metal). Kd stays the base colour: what a dielectric tints, what a metal reflects. Other
+transmission (or metallic between 0 and 1) stays Lambert, with a warning.
 """
 
 from __future__ import annotations
@@ -121,26 +126,32 @@ def _texture_file(gltf: Gltf, tex: dict, out_dir: str) -> str:
     return os.path.abspath(gltf.image_file(texture["source"], out_dir))
 
 
-def _write_transmission(f, path: str, index: int, mat: dict) -> None:
-    """The Ptr / Pabs keys of a smooth transmissive material (see the module's docstring)."""
+def _write_glossy(f, gltf: "Gltf", out_dir: str, index: int, mat: dict) -> bool:
+    """The keys of a dielectric or metal (the module's docstring); False for any other material."""
     ext = mat.get("extensions", {})
-    transmission = ext.get("KHR_materials_transmission")
-    if transmission is None or transmission.get("transmissionFactor", 0.0) <= 0.0:
-        return
     pbr = mat.get("pbrMetallicRoughness", {})
-    if (transmission.get("transmissionFactor") != 1.0 or "transmissionTexture" in transmission
-            or pbr.get("roughnessFactor", 1.0) != 0.0 or pbr.get("metallicFactor", 1.0) != 0.0
-            or "metallicRoughnessTexture" in pbr):
-        print(f"warning: {path}: material {index} ({mat.get('name', '')}): only smooth, full, non-metal "
-              "transmission becomes a dielectric; this one stays Lambert")
-        return
-    f.write(f"Ptr {ext.get('KHR_materials_ior', {}).get('ior', 1.5)}\n")
-    volume = ext.get("KHR_materials_volume")
-    if volume is not None and volume.get("thicknessFactor", 0.0) > 0.0:
-        distance = volume.get("attenuationDistance", math.inf)
-        colour = volume.get("attenuationColor", [1.0, 1.0, 1.0])
-        sigma = [0.0 if math.isinf(distance) else -math.log(max(c, 1e-30)) / distance for c in colour]
-        f.write(f"Pabs {sigma[0]:.9g} {sigma[1]:.9g} {sigma[2]:.9g}\n")
+    transmission = ext.get("KHR_materials_transmission", {})
+    where = f"{gltf.path}: material {index} ({mat.get('name', '')})"
+    if transmission.get("transmissionFactor", 0.0) > 0.0:
+        if (transmission["transmissionFactor"] != 1.0 or "transmissionTexture" in transmission
+                or ("metallicRoughnessTexture" not in pbr and pbr.get("metallicFactor", 1.0) != 0.0)):
+            print(f"warning: {where}: only full, non-metal transmission becomes a dielectric; this one stays Lambert")
+            return False
+        f.write(f"Ptr {ext.get('KHR_materials_ior', {}).get('ior', 1.5)}\n")
+        volume = ext.get("KHR_materials_volume")
+        if volume is not None and volume.get("thicknessFactor", 0.0) > 0.0:
+            distance = volume.get("attenuationDistance", math.inf)
+            colour = volume.get("attenuationColor", [1.0, 1.0, 1.0])
+            sigma = [0.0 if math.isinf(distance) else -math.log(max(c, 1e-30)) / distance for c in colour]
+            f.write(f"Pabs {sigma[0]:.9g} {sigma[1]:.9g} {sigma[2]:.9g}\n")
+    elif pbr.get("metallicFactor", 1.0) == 1.0:
+        f.write("Pmetal\n")
+    else:
+        return False
+    f.write(f"Pgr {pbr.get('roughnessFactor', 1.0)}\n")
+    if "metallicRoughnessTexture" in pbr:
+        f.write(f"map_Pgr {_texture_file(gltf, pbr['metallicRoughnessTexture'], out_dir)}\n")
+    return True
 
 
 def _write_mtl(gltf: Gltf, path: str, out_dir: str, pbr_mode: bool = False) -> list[str]:
@@ -151,12 +162,13 @@ def _write_mtl(gltf: Gltf, path: str, out_dir: str, pbr_mode: bool = False) -> l
             names.append(name)
             pbr = mat.get("pbrMetallicRoughness", {})
             color = pbr.get("baseColorFactor", [1, 1, 1, 1])
-            if pbr.get("metallicFactor", 1.0) > 0 and not pbr_mode:
-                print(f"warning: {gltf.path}: material {i} ({mat.get('name', '')}) has metallic "
-                      f"{pbr.get('metallicFactor', 1.0)}; rendered as Lambert baseColor (geocold-cl's PBR stub)")
             strength = mat.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1)
             ke = [c * strength for c in mat.get("emissiveFactor", [0, 0, 0])]
             f.write(f"newmtl {name}\nillum 1\nKd {color[0]} {color[1]} {color[2]}\nKe {ke[0]} {ke[1]} {ke[2]}\n")
+            glossy = not pbr_mode and _write_glossy(f, gltf, out_dir, i, mat)
+            if pbr.get("metallicFactor", 1.0) > 0 and not pbr_mode and not glossy:
+                print(f"warning: {gltf.path}: material {i} ({mat.get('name', '')}) has metallic "
+                      f"{pbr.get('metallicFactor', 1.0)}; rendered as Lambert baseColor (geocold-cl's PBR stub)")
             tex = pbr.get("baseColorTexture")
             if tex is not None:
                 if tex.get("texCoord", 0) != 0:
@@ -166,7 +178,6 @@ def _write_mtl(gltf: Gltf, path: str, out_dir: str, pbr_mode: bool = False) -> l
                 if sampler.get("wrapS", 10497) != 10497 or sampler.get("wrapT", 10497) != 10497:
                     print(f"warning: {gltf.path}: material {i}: only REPEAT wrapping is reproduced")
                 f.write(f"map_Kd {os.path.abspath(gltf.image_file(texture['source'], out_dir))}\n")
-            _write_transmission(f, gltf.path, i, mat)
             if pbr_mode:
                 f.write(f"Pm {pbr.get('metallicFactor', 1.0)}\nPr {pbr.get('roughnessFactor', 1.0)}\n")
                 if "metallicRoughnessTexture" in pbr:

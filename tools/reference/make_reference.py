@@ -145,22 +145,28 @@ def main(argv=None):
         import drjit as dr
 
         dr.set_thread_count(args.threads)
-    from mitsuba_scene import build_scene
+    from mitsuba_scene import absorbs, build_scene
 
     with tempfile.TemporaryDirectory() as tmp:
         groups = load_groups(scene_path, tmp, args.pbr)
         scene = build_scene(groups, cam, max_depth, env, args.seed)
-        has_media = any(g.material.absorption is not None for g in groups)
+        has_media = any(absorbs(g.material) for g in groups)
         width, height = cam["res"]
         total = np.zeros((height, width, 3), dtype=np.float64)
         total_sq = np.zeros_like(total)
-        done, passes = 0, 0
+        done, passes, attempts, replaced = 0, 0, 0, 0
         start = time.time()
         while done < spp:
             # A fresh seed per pass: independent samples; equal passes, so the mean of the pass
-            # means is the spp-sample mean.
+            # means is the spp-sample mean. A pass with a non-finite pixel (Mitsuba's rough
+            # dielectrics now and then give a NaN sample) is rendered again with the next seed,
+            # and the JSON counts those.
             n = args.pass_spp
-            image = np.array(mi.render(scene, spp=n, seed=args.seed * 1_000_003 + passes), dtype=np.float64)
+            image = np.array(mi.render(scene, spp=n, seed=args.seed * 1_000_003 + attempts), dtype=np.float64)
+            attempts += 1
+            if not np.isfinite(image[:, :, :3]).all():
+                replaced += 1
+                continue
             total += image[:, :, :3]
             total_sq += image[:, :, :3] ** 2
             done += n
@@ -193,6 +199,7 @@ def main(argv=None):
                     "box filter, independent sampler" + (", glTF materials as principled" if args.pbr else ""),
         "variance": os.path.basename(variance_path),
         "variance_estimator": f"per-sample variance from {passes} passes of {args.pass_spp} spp",
+        **({"nonfinite_passes_replaced": replaced} if replaced else {}),
         "seed": args.seed,
         "seconds": round(seconds, 1),
         "command": "tools/reference/make_reference.py " + " ".join(shlex.quote(a) for a in

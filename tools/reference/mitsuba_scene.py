@@ -8,12 +8,15 @@ The material mapping is the conventions table of /work/shared/refs/README.md:
   non-dielectrics     two-sided
 (illum 8, 9, 10 are not in the table; they follow geocold-cl's OBJ loader.)
 
-glTF smooth transmission (gltf_to_obj.py's Ptr / Pabs): with a volume, a `dielectric` of its
-IOR whose transmittance is the base colour, over a `homogeneous` purely absorbing interior
-medium (the scene then renders with `volpathmis`); thin-walled, glTF's delta pair at normal
-incidence: a blend of a mirror of weight F0 = ((ior - 1) / (ior + 1))^2 and a pass-through
-tinted by the base colour (a `thindielectric` of IOR 1), which differs from glTF's Schlick
-weights away from normal incidence.
+glTF transmission (gltf_to_obj.py's Ptr, Pabs, Pgr, map_Pgr): rough, a GGX
+`roughdielectric` of its IOR (alpha = roughness^2, at least geocold-cl's 1e-3) whose
+transmittance is the base colour; smooth with a volume (Pabs given), a `dielectric` likewise;
+either over a `homogeneous` purely absorbing interior medium when the volume attenuates (the scene then
+renders with `volpathmis`); smooth and thin-walled, glTF's delta pair at normal incidence: a
+blend of a mirror of weight F0 = ((ior - 1) / (ior + 1))^2 and a pass-through tinted by the
+base colour (a `thindielectric` of IOR 1); at IOR 1, rough or not, that pass-through alone.
+Mitsuba's Fresnel is exact where glTF's is Schlick's: they agree at normal incidence. A glTF
+metal (Pmetal) becomes a GGX `roughconductor` reflecting the base colour (`metal_bsdf`).
 
 Mitsuba 3 has no additive BSDF, so the diffuse + mirror sum is a blendbsdf with weight w:
     (1 - w) * diffuse(Kd / (1 - w)) + w * conductor(Ks / w) = Kd/pi + delta * Ks
@@ -53,11 +56,18 @@ def _diffuse_reflectance(material, scale: float = 1.0) -> dict:
             "wrap_mode": "repeat"}
 
 
+def _data_texels(path: str) -> np.ndarray:
+    """An image's stored values as floats (H, W, 3). Mitsuba takes an 8-bit image for sRGB and
+    would decode it on conversion; glTF's data textures (metallicRoughness) hold linear values."""
+    bitmap = mi.Bitmap(path)
+    bitmap.set_srgb_gamma(False)
+    return np.array(bitmap.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False))
+
+
 def _channel_texture(path: str, channel: int, factor: float) -> dict:
     # One linear channel of an image (glTF packs metallic in B and roughness in G), times the
     # factor, as a float bitmap texture.
-    bitmap = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
-    data = np.array(bitmap)[:, :, channel:channel + 1] * np.float32(factor)
+    data = _data_texels(path)[:, :, channel:channel + 1] * np.float32(factor)
     return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(data, dtype=np.float32)), "raw": True,
             "filter_type": "bilinear", "wrap_mode": "repeat"}
 
@@ -83,8 +93,39 @@ def principled_bsdf(material) -> dict:
     return {"type": "twosided", "bsdf": bsdf}
 
 
+def absorbs(material) -> bool:
+    """Whether the material has an interior medium that absorbs."""
+    return material.absorption is not None and max(material.absorption) > 0.0
+
+
+MIN_ALPHA = 1e-3  # geocold-cl's GC_PBR_MIN_ALPHA: a smoother facet is taken as this rough
+
+
+def _gltf_alpha(material, metallic: float):
+    """GGX alpha = roughness^2 (at least MIN_ALPHA), a float or a bitmap texture; None if smooth.
+    A texture's metallic (B) must be `metallic` throughout."""
+    if material.map_gltf_mr is None:
+        return max(material.gltf_roughness ** 2, MIN_ALPHA) if material.gltf_roughness > 0.0 else None
+    texels = _data_texels(material.map_gltf_mr)
+    if np.abs(texels[:, :, 2] - metallic).max() > 1.0 / 255.0:
+        raise ValueError(f"material {material.name}: metallic varies over its texture; no Mitsuba counterpart here")
+    if material.gltf_roughness <= 0.0:
+        return None
+    alpha = np.maximum((texels[:, :, 1:2] * np.float32(material.gltf_roughness)) ** 2, MIN_ALPHA)
+    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(alpha, dtype=np.float32)), "raw": True,
+            "filter_type": "bilinear", "wrap_mode": "repeat"}
+
+
 def transmission_bsdf(material) -> dict:
     tint = _rgb(material.kd)
+    alpha = _gltf_alpha(material, 0.0)
+    if material.transmission_ior == 1.0:
+        # Facets of an IOR of 1 bend no light whatever their slopes (geocold-cl's
+        # gc_pbr_transmission_alpha): a pass-through tinted by the base colour.
+        return {"type": "thindielectric", "int_ior": 1.0, "ext_ior": 1.0, "specular_transmittance": tint}
+    if alpha is not None:
+        return {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha, "sample_visible": True,
+                "int_ior": float(material.transmission_ior), "ext_ior": 1.0, "specular_transmittance": tint}
     if material.absorption is not None:
         return {"type": "dielectric", "int_ior": float(material.transmission_ior), "ext_ior": 1.0,
                 "specular_transmittance": tint}
@@ -94,9 +135,23 @@ def transmission_bsdf(material) -> dict:
             "bsdf_1": {"type": "conductor", "material": "none"}}
 
 
+def metal_bsdf(material) -> dict:
+    """glTF's metal: GGX facets reflecting the base colour (Mitsuba's conductor of material
+    "none" reflects its specular_reflectance at every angle, glTF's rises to white at grazing
+    angles by Schlick's law: they agree at normal incidence)."""
+    alpha = _gltf_alpha(material, 1.0)
+    bsdf = {"type": "conductor" if alpha is None else "roughconductor", "material": "none",
+            "specular_reflectance": _diffuse_reflectance(material)}
+    if alpha is not None:
+        bsdf.update({"distribution": "ggx", "alpha": alpha, "sample_visible": True})
+    return {"type": "twosided", "bsdf": bsdf}
+
+
 def material_bsdf(material) -> dict:
     if material.transmission_ior is not None:
         return transmission_bsdf(material)
+    if material.metal:
+        return metal_bsdf(material)
     if material.pbr:
         return principled_bsdf(material)
     if material.illum in DIELECTRIC_ILLUM:
@@ -130,7 +185,7 @@ def material_bsdf(material) -> dict:
 def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
     props = mi.Properties()
     props["bsdf"] = mi.load_dict(material_bsdf(group.material))
-    if group.material.absorption is not None:
+    if absorbs(group.material):
         # An RGB value here is read as a reflectance (at most 1): the largest coefficient goes
         # into the medium's scale.
         sigma = np.asarray(group.material.absorption, dtype=np.float64)
@@ -159,7 +214,7 @@ def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
 
 def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path") -> mi.Scene:
     width, height = camera["res"]
-    if integrator == "path" and any(g.material.absorption is not None for g in groups):
+    if integrator == "path" and any(absorbs(g.material) for g in groups):
         # The same estimator with the media the path integrator ignores; volpathmis weighs the
         # distance sampling of the three channels by MIS (volpath samples one channel's distance,
         # so a colour absorbed at very different rates gets fireflies in the others).

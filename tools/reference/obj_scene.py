@@ -36,10 +36,14 @@ class ObjMaterial:
     roughness: float = 1.0
     map_mr: str | None = None  # glTF metallicRoughness texture: B = metal, G = roughness (linear)
     map_norm: str | None = None  # tangent-space normal map (linear)
-    # glTF smooth transmission (gltf_to_obj.py's Ptr / Pabs keys): its index of refraction, and
-    # the absorption coefficients of its volume (None: thin-walled)
+    # glTF dielectrics and metals (gltf_to_obj.py's Ptr, Pabs, Pmetal, Pgr, map_Pgr keys): the
+    # transmission's index of refraction, its volume's absorption coefficients (None: no volume),
+    # whether it is a metal, and the roughnessFactor, times the G of map_gltf_mr where given
     transmission_ior: float | None = None
     absorption: tuple | None = None
+    metal: bool = False
+    gltf_roughness: float = 0.0
+    map_gltf_mr: str | None = None
 
 
 DEFAULT_MATERIAL = ObjMaterial(name="<default>", kd=(0.5, 0.5, 0.5), illum=0)
@@ -94,6 +98,12 @@ def read_mtl(path: str, materials: dict[str, ObjMaterial]) -> None:
                 current.pbr, current.roughness = True, _floats(rest, 1, where)[0]
             elif key == "Ptr":
                 current.transmission_ior = _floats(rest, 1, where)[0]
+            elif key == "Pmetal":
+                current.metal = True
+            elif key == "Pgr":
+                current.gltf_roughness = _floats(rest, 1, where)[0]
+            elif key == "map_Pgr" and rest:
+                current.map_gltf_mr = os.path.normpath(os.path.join(base, rest[-1]))
             elif key == "Pabs":
                 current.absorption = _floats(rest, 3, where)
             elif key == "map_Pmr" and rest:
