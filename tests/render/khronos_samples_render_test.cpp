@@ -73,7 +73,7 @@ glm::vec3 centroid(const Scene& s, std::uint32_t tri)
 
 glm::vec3 face_normal(const Scene& s, std::uint32_t tri)
 {
-    return glm::normalize(glm::cross(s.vertex(tri, 1) .glm() - s.vertex(tri, 0).glm(),
+    return glm::normalize(glm::cross(s.vertex(tri, 1).glm() - s.vertex(tri, 0).glm(),
                                      s.vertex(tri, 2).glm() - s.vertex(tri, 0).glm()));
 }
 
@@ -149,7 +149,8 @@ protected:
             if (facing > 0.95f) centre[key].add(shot.radiance[i]);
             if (facing < 0.5f) rim[key].add(shot.radiance[i]);
             // Away from the outline, where a pixel's samples see the sky beside the sphere.
-            if (key == "M1#1" && facing > 0.5f) row1_first_max = std::max(row1_first_max, glm::length(shot.radiance[i]));
+            if (key == "M1#1" && facing > 0.5f)
+                row1_first_max = std::max(row1_first_max, glm::length(shot.radiance[i]));
         }
     }
 
@@ -253,7 +254,10 @@ TEST_F(SampleModelTest, TransmissionRoughnessTestBlursMoreAtHigherIor)
     for (const std::string& row : rows) {
         float lo = 1e30f, hi = -1e30f;
         for (std::uint32_t t = 0; t < rough.triangle_count(); ++t)
-            if (material_name(rough, t) == row) lo = std::min(lo, centroid(rough, t).x), hi = std::max(hi, centroid(rough, t).x);
+            if (material_name(rough, t) == row) {
+                lo = std::min(lo, centroid(rough, t).x);
+                hi = std::max(hi, centroid(rough, t).x);
+            }
         auto column_of = [&](std::uint32_t t) {
             return std::min(columns - 1, static_cast<int>(columns * (centroid(rough, t).x - lo) / (hi - lo)));
         };

@@ -200,9 +200,9 @@ Comparison compare(const validation::Rendered& got, const Reference& ref, std::u
                 100.0 * out.z.pass_fraction, out.z.tested, 100.0 * kZPassMin, out.z.alpha_sidak, out.z.max_z);
     std::printf("  rel MSE %.3e, bound %.3e (= 2 x predicted %.3e + 1e-4; acceptance 2e-3 scaled to %u spp: %.3e)\n",
                 out.diff.rel_mse, out.rel_mse_bound, out.noise.predicted_rel_mse, spp, 2e-3 * 1024.0 / spp);
-    std::printf("  image mean z (R G B): %.2f %.2f %.2f (max %.1f); test / reference %.4f %.4f %.4f", out.noise.mean_z[0],
-                out.noise.mean_z[1], out.noise.mean_z[2], kMeanZMax, out.mean_ratio[0], out.mean_ratio[1],
-                out.mean_ratio[2]);
+    std::printf("  image mean z (R G B): %.2f %.2f %.2f (max %.1f); test / reference %.4f %.4f %.4f",
+                out.noise.mean_z[0], out.noise.mean_z[1], out.noise.mean_z[2], kMeanZMax, out.mean_ratio[0],
+                out.mean_ratio[1], out.mean_ratio[2]);
     if (model_mean_difference > 0.0) std::printf(" (the models' difference: within %.3f)", model_mean_difference);
     std::printf("; nonfinite %zu\n", out.diff.nonfinite);
     return out;
