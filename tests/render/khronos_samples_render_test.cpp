@@ -19,9 +19,11 @@
 #include <vector>
 
 #include "host/bvh/bvh.h"
+#include "host/render/aov_layers.h"
 #include "host/render/renderer.h"
 #include "host/scene/camera_framing.h"
 #include "host/scene/load.h"
+#include "host/scene/triangle_sink.h"
 #include "tests/cl/cl_test_util.h"
 
 namespace gc {
@@ -49,13 +51,8 @@ Shot shoot(const cl::Context& context, const Scene& scene, const Camera& camera,
     settings.env_radiance = env;
     Renderer renderer(context, scene, build_bvh(scene), camera, settings);
     renderer.render(0, spp);
-    RenderSettings ids = settings;
-    ids.integrator = IntegratorKind::Aov;
-    ids.aov = AovKind::PrimitiveId;
-    Renderer first_hits(context, renderer.shared_scene(), camera, ids);
-    first_hits.render(0, 1);
     const Film image = renderer.film();
-    const Film hit = first_hits.film();
+    const Film hit = render_aov_like(renderer, AovKind::PrimitiveId, 1);
     Shot shot;
     for (std::size_t i = 0; i < image.pixel_count(); ++i) {
         const float* p = image.data().data() + 4 * i;
@@ -71,10 +68,9 @@ glm::vec3 centroid(const Scene& s, std::uint32_t tri)
     return (s.vertex(tri, 0).glm() + s.vertex(tri, 1).glm() + s.vertex(tri, 2).glm()) / 3.0f;
 }
 
-glm::vec3 face_normal(const Scene& s, std::uint32_t tri)
+glm::vec3 triangle_normal(const Scene& s, std::uint32_t tri)
 {
-    return glm::normalize(glm::cross(s.vertex(tri, 1).glm() - s.vertex(tri, 0).glm(),
-                                     s.vertex(tri, 2).glm() - s.vertex(tri, 0).glm()));
+    return face_normal(s.vertex(tri, 0), s.vertex(tri, 1), s.vertex(tri, 2)).glm();
 }
 
 const std::string& material_name(const Scene& s, std::uint32_t tri) { return s.materials[s.material_ids[tri]].name; }
@@ -145,7 +141,7 @@ protected:
             if (m.size() < 2 || m[0] != 'M' || m[1] < '1' || m[1] > '7') continue;  // the labels
             const glm::vec3 c = centroid(scene, t);
             const std::string key = m.substr(0, 2) + "#" + std::to_string(nearest(columns, c.x) + 1);
-            const float facing = glm::dot(face_normal(scene, t), glm::normalize(camera.look_from.glm() - c));
+            const float facing = glm::dot(triangle_normal(scene, t), glm::normalize(camera.look_from.glm() - c));
             if (facing > 0.95f) centre[key].add(shot.radiance[i]);
             if (facing < 0.5f) rim[key].add(shot.radiance[i]);
             // Away from the outline, where a pixel's samples see the sky beside the sphere.
@@ -329,7 +325,7 @@ TEST_F(SampleModelTest, AttenuationTestColumnsShowTheSpecifiedTransmittance)
     auto glass_at = [&](int x, int y) {
         const std::uint32_t t = a.triangle[std::size_t(y) * size + x];
         if (t == k_miss || tinted.materials[tinted.material_ids[t]].transmission <= 0.0f ||
-            std::abs(face_normal(tinted, t).z) < 0.99f)
+            std::abs(triangle_normal(tinted, t).z) < 0.99f)
             return -1;
         const glm::vec3 c = centroid(tinted, t);
         return nearest(row_y, c.y) * 5 + nearest(column_x, c.x);
@@ -367,9 +363,9 @@ TEST_F(SampleModelTest, AttenuationTestColumnsShowTheSpecifiedTransmittance)
 // A draped technical fabric (README): a tiled blue base colour, a sheen colour and roughness
 // texture, vertices quantized (KHR_mesh_quantization, required) and textures tiled through
 // KHR_texture_transform. Charlie sheen is a grazing-angle lobe: with it the cloth's grazing
-// folds brighten against the same cloth without it (by 2 % at 128x128, 16 spp), more than
-// where the cloth faces the view, where the sheen takes its share from the layers beneath (the
-// spec's albedo scaling). Nothing is non-finite, and the cloth stays blue.
+// folds brighten against the same cloth without it, more than where the cloth faces the view,
+// where the sheen takes its share from the layers beneath (the spec's albedo scaling). Nothing
+// is non-finite, and the cloth stays blue.
 TEST_F(SampleModelTest, SheenClothShowsItsSheen)
 {
     const Scene with = load_sample("SheenCloth");
@@ -391,7 +387,7 @@ TEST_F(SampleModelTest, SheenClothShowsItsSheen)
         non_finite += std::isfinite(a.radiance[i].x + a.radiance[i].y + a.radiance[i].z) ? 0 : 1;
         cloth.add(a.radiance[i]);
         const glm::vec3 c = centroid(with, t);
-        const float facing = std::abs(glm::dot(face_normal(with, t), glm::normalize(camera.look_from.glm() - c)));
+        const float facing = std::abs(glm::dot(triangle_normal(with, t), glm::normalize(camera.look_from.glm() - c)));
         if (facing < 0.3f) grazing_with.add(a.radiance[i]), grazing_without.add(b.radiance[i]);
         if (facing > 0.8f) facing_with.add(a.radiance[i]), facing_without.add(b.radiance[i]);
     }
