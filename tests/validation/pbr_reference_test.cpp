@@ -12,8 +12,7 @@
 // P is the noise an unbiased render at the test's spp adds (from our measured per-sample
 // variance), so the bound equals the acceptance tolerance at high spp and scales it to the
 // modest spp used here. Measured at 1024 spp (128x128, PoCL): avocado (its textures reduced to
-// 256x256) 1.03e-3 (1.98e-3 against the reference made while tools/reference read the
-// metallicRoughness texture as sRGB), textured box 4.59e-3 (tolerances below). Tolerance 5e-3 is the acceptance;
+// 256x256) 1.03e-3, textured box 4.59e-3 (tolerances below). Tolerance 5e-3 is the acceptance;
 // the textured box gets 8e-3, widened for one documented convention difference: it is a
 // roughness-1 dielectric, where Disney's diffuse is ~11% brighter than glTF's Lambert (1 - F)
 // (on the box's pixels: geocold-cl / Mitsuba-principled = 0.896, geocold-cl / Mitsuba-diffuse
