@@ -19,9 +19,9 @@ KHR_materials_volume, Pabs with the absorption coefficients -ln(attenuationColor
 attenuationDistance (zeros without an attenuation; smooth without a volume it is thin-walled);
 a metal (metallicFactor 1, not transmissive) becomes a conductor, with the key Pmetal. Both get
 Pgr, the roughnessFactor, and map_Pgr, the metallicRoughness texture (its G the roughness;
-mitsuba_scene.py checks that its B, the metallic, is 0 throughout for a dielectric and 1 for a
-metal). Kd stays the base colour: what a dielectric tints, what a metal reflects. Other
-transmission (or metallic between 0 and 1) stays Lambert, with a warning.
+mitsuba_scene.py keeps a dielectric only where its B, the metallic, is 0 throughout, and a
+metal where it is 1). Kd stays the base colour: what a dielectric tints, what a metal reflects.
+Other transmission (or metallic between 0 and 1) stays Lambert, with a warning.
 """
 
 from __future__ import annotations

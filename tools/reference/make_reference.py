@@ -145,12 +145,12 @@ def main(argv=None):
         import drjit as dr
 
         dr.set_thread_count(args.threads)
-    from mitsuba_scene import absorbs, build_scene
+    from mitsuba_scene import build_scene, integrator_for
 
     with tempfile.TemporaryDirectory() as tmp:
         groups = load_groups(scene_path, tmp, args.pbr)
         scene = build_scene(groups, cam, max_depth, env, args.seed)
-        has_media = any(absorbs(g.material) for g in groups)
+        integrator = integrator_for(groups)
         width, height = cam["res"]
         total = np.zeros((height, width, 3), dtype=np.float64)
         total_sq = np.zeros_like(total)
@@ -195,7 +195,7 @@ def main(argv=None):
         "max_depth": max_depth,
         "env": env,
         "renderer": f"Mitsuba {mi.__version__}, {args.variant} variant, "
-                    f"{'volpathmis' if has_media else 'path'} integrator (NEE + MIS), "
+                    f"{integrator} integrator (NEE + MIS), "
                     "box filter, independent sampler" + (", glTF materials as principled" if args.pbr else ""),
         "variance": os.path.basename(variance_path),
         "variance_estimator": f"per-sample variance from {passes} passes of {args.pass_spp} spp",

@@ -43,6 +43,12 @@ def _rgb(c) -> dict:
     return {"type": "rgb", "value": [float(x) for x in c]}
 
 
+def _float_bitmap(data: np.ndarray) -> dict:
+    # Texels already linear (raw: no sRGB decoding), filtered and wrapped as geocold-cl's.
+    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(data, dtype=np.float32)), "raw": True,
+            "filter_type": "bilinear", "wrap_mode": "repeat"}
+
+
 def _diffuse_reflectance(material, scale: float = 1.0) -> dict:
     kd = np.asarray(material.kd, dtype=np.float64) * scale
     if material.map_kd is None:
@@ -51,9 +57,7 @@ def _diffuse_reflectance(material, scale: float = 1.0) -> dict:
         return {"type": "bitmap", "filename": material.map_kd, "filter_type": "bilinear", "wrap_mode": "repeat"}
     # Kd times the texture: Mitsuba has no product texture, so bake Kd into a linear copy.
     bitmap = mi.Bitmap(material.map_kd).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
-    data = np.array(bitmap) * kd.astype(np.float32)
-    return {"type": "bitmap", "bitmap": mi.Bitmap(data.astype(np.float32)), "raw": True, "filter_type": "bilinear",
-            "wrap_mode": "repeat"}
+    return _float_bitmap(np.array(bitmap) * kd.astype(np.float32))
 
 
 def _data_texels(path: str) -> np.ndarray:
@@ -67,9 +71,7 @@ def _data_texels(path: str) -> np.ndarray:
 def _channel_texture(path: str, channel: int, factor: float) -> dict:
     # One linear channel of an image (glTF packs metallic in B and roughness in G), times the
     # factor, as a float bitmap texture.
-    data = _data_texels(path)[:, :, channel:channel + 1] * np.float32(factor)
-    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(data, dtype=np.float32)), "raw": True,
-            "filter_type": "bilinear", "wrap_mode": "repeat"}
+    return _float_bitmap(_data_texels(path)[:, :, channel:channel + 1] * np.float32(factor))
 
 
 def principled_bsdf(material) -> dict:
@@ -101,24 +103,27 @@ def absorbs(material) -> bool:
 MIN_ALPHA = 1e-3  # geocold-cl's GC_PBR_MIN_ALPHA: a smoother facet is taken as this rough
 
 
-def _gltf_alpha(material, metallic: float):
-    """GGX alpha = roughness^2 (at least MIN_ALPHA), a float or a bitmap texture; None if smooth.
-    A texture's metallic (B) must be `metallic` throughout."""
+def _metallic_is(material, metallic: float) -> bool:
+    """Whether a glTF material's metallic is `metallic` everywhere: its metallicRoughness
+    texture's B, where it has one (gltf_to_obj.py checked the factor)."""
     if material.map_gltf_mr is None:
-        return max(material.gltf_roughness ** 2, MIN_ALPHA) if material.gltf_roughness > 0.0 else None
-    texels = _data_texels(material.map_gltf_mr)
-    if np.abs(texels[:, :, 2] - metallic).max() > 1.0 / 255.0:
-        raise ValueError(f"material {material.name}: metallic varies over its texture; no Mitsuba counterpart here")
+        return True
+    return np.abs(_data_texels(material.map_gltf_mr)[:, :, 2] - metallic).max() <= 1.0 / 255.0
+
+
+def _gltf_alpha(material):
+    """GGX alpha = roughness^2 (at least MIN_ALPHA), a float or a bitmap texture; None if smooth."""
     if material.gltf_roughness <= 0.0:
         return None
-    alpha = np.maximum((texels[:, :, 1:2] * np.float32(material.gltf_roughness)) ** 2, MIN_ALPHA)
-    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(alpha, dtype=np.float32)), "raw": True,
-            "filter_type": "bilinear", "wrap_mode": "repeat"}
+    if material.map_gltf_mr is None:
+        return max(material.gltf_roughness ** 2, MIN_ALPHA)
+    texels = _data_texels(material.map_gltf_mr)
+    return _float_bitmap(np.maximum((texels[:, :, 1:2] * np.float32(material.gltf_roughness)) ** 2, MIN_ALPHA))
 
 
 def transmission_bsdf(material) -> dict:
     tint = _rgb(material.kd)
-    alpha = _gltf_alpha(material, 0.0)
+    alpha = _gltf_alpha(material)
     if material.transmission_ior == 1.0:
         # Facets of an IOR of 1 bend no light whatever their slopes (geocold-cl's
         # gc_pbr_transmission_alpha): a pass-through tinted by the base colour.
@@ -139,7 +144,7 @@ def metal_bsdf(material) -> dict:
     """glTF's metal: GGX facets reflecting the base colour (Mitsuba's conductor of material
     "none" reflects its specular_reflectance at every angle, glTF's rises to white at grazing
     angles by Schlick's law: they agree at normal incidence)."""
-    alpha = _gltf_alpha(material, 1.0)
+    alpha = _gltf_alpha(material)
     bsdf = {"type": "conductor" if alpha is None else "roughconductor", "material": "none",
             "specular_reflectance": _diffuse_reflectance(material)}
     if alpha is not None:
@@ -148,10 +153,10 @@ def metal_bsdf(material) -> dict:
 
 
 def material_bsdf(material) -> dict:
-    if material.transmission_ior is not None:
-        return transmission_bsdf(material)
-    if material.metal:
-        return metal_bsdf(material)
+    if material.transmission_ior is not None or material.metal:
+        if _metallic_is(material, 0.0 if material.transmission_ior is not None else 1.0):
+            return transmission_bsdf(material) if material.transmission_ior is not None else metal_bsdf(material)
+        print(f"warning: material {material.name}: its texture's metallic varies; rendered as Lambert baseColor")
     if material.pbr:
         return principled_bsdf(material)
     if material.illum in DIELECTRIC_ILLUM:
@@ -212,13 +217,19 @@ def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
     return mesh
 
 
-def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path") -> mi.Scene:
-    width, height = camera["res"]
+def integrator_for(groups, integrator: str = "path") -> str:
+    """The integrator build_scene renders these groups with, asked for `integrator`."""
     if integrator == "path" and any(absorbs(g.material) for g in groups):
         # The same estimator with the media the path integrator ignores; volpathmis weighs the
         # distance sampling of the three channels by MIS (volpath samples one channel's distance,
         # so a colour absorbed at very different rates gets fireflies in the others).
-        integrator = "volpathmis"
+        return "volpathmis"
+    return integrator
+
+
+def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path") -> mi.Scene:
+    width, height = camera["res"]
+    integrator = integrator_for(groups, integrator)
     scene = {
         "type": "scene",
         "integrator": {"type": integrator, "max_depth": int(max_depth)},
