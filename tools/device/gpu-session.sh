@@ -30,19 +30,19 @@ tools/device/multi-device-run.sh build
 step "build: $(head -2 "$OUT/run.log" | tr '\n' ' ')"
 
 if [ "${GEOCOLD_SKIP_ANSWERED:-0}" != 1 ]; then
-timeout 40 build/bare/geocold-instances --mesh $dragon --instances 1000000 --device gpu --size 640x480 \
-    --out "$OUT/dragons.pfm" > "$OUT/instances.log" 2>&1
-step "instances rc=$?"
-timeout 60 build/bare/geocold-instances --mesh $dragon --instances 1000000 --device gpu --size 640x480 --spp 16 \
-    --out "$OUT/dragons-path.pfm" > "$OUT/instances-path.log" 2>&1
-step "instances, path traced rc=$?"
+    timeout 40 build/bare/geocold-instances --mesh $dragon --instances 1000000 --device gpu --size 640x480 \
+        --out "$OUT/dragons.pfm" > "$OUT/instances.log" 2>&1
+    step "instances rc=$?"
+    timeout 60 build/bare/geocold-instances --mesh $dragon --instances 1000000 --device gpu --size 640x480 --spp 16 \
+        --out "$OUT/dragons-path.pfm" > "$OUT/instances-path.log" 2>&1
+    step "instances, path traced rc=$?"
 
-for s in tests/data/scenes/box-textured/BoxTextured.gltf scenes/cornell-box/CornellBox-Original.obj; do
-    GEOCOLD_PATH_KERNEL=megakernel timeout 30 build/bare/geocold-cl "$s" --device gpu --res 64x64 --spp 4 \
-        --env 1,1,1 -o /tmp/mk.pfm > /tmp/mk.log 2>&1
-    echo "megakernel on the GPU, $(basename "$s"): rc=$? $(tail -1 /tmp/mk.log)" >> "$OUT/megakernel-gpu.log"
-done
-step "megakernel on the GPU: $(tr '\n' ' ' < "$OUT/megakernel-gpu.log")"
+    for s in tests/data/scenes/box-textured/BoxTextured.gltf scenes/cornell-box/CornellBox-Original.obj; do
+        GEOCOLD_PATH_KERNEL=megakernel timeout 30 build/bare/geocold-cl "$s" --device gpu --res 64x64 --spp 4 \
+            --env 1,1,1 -o /tmp/mk.pfm > /tmp/mk.log 2>&1
+        echo "megakernel on the GPU, $(basename "$s"): rc=$? $(tail -1 /tmp/mk.log)" >> "$OUT/megakernel-gpu.log"
+    done
+    step "megakernel on the GPU: $(tr '\n' ' ' < "$OUT/megakernel-gpu.log")"
 fi
 
 if [ "$(left)" -gt 60 ]; then
