@@ -73,6 +73,12 @@ glm::vec3 triangle_normal(const Scene& s, std::uint32_t tri)
     return face_normal(s.vertex(tri, 0), s.vertex(tri, 1), s.vertex(tri, 2)).glm();
 }
 
+// The cosine between a triangle's normal and the direction from its centroid to the camera.
+float facing_camera(const Scene& s, std::uint32_t tri, const Camera& camera)
+{
+    return glm::dot(triangle_normal(s, tri), glm::normalize(camera.look_from.glm() - centroid(s, tri)));
+}
+
 const std::string& material_name(const Scene& s, std::uint32_t tri) { return s.materials[s.material_ids[tri]].name; }
 
 // The index of the value in `centres` nearest to x.
@@ -141,7 +147,7 @@ protected:
             if (m.size() < 2 || m[0] != 'M' || m[1] < '1' || m[1] > '7') continue;  // the labels
             const glm::vec3 c = centroid(scene, t);
             const std::string key = m.substr(0, 2) + "#" + std::to_string(nearest(columns, c.x) + 1);
-            const float facing = glm::dot(triangle_normal(scene, t), glm::normalize(camera.look_from.glm() - c));
+            const float facing = facing_camera(scene, t, camera);
             if (facing > 0.95f) centre[key].add(shot.radiance[i]);
             if (facing < 0.5f) rim[key].add(shot.radiance[i]);
             // Away from the outline, where a pixel's samples see the sky beside the sphere.
@@ -386,8 +392,7 @@ TEST_F(SampleModelTest, SheenClothShowsItsSheen)
         if (t == k_miss) continue;
         non_finite += std::isfinite(a.radiance[i].x + a.radiance[i].y + a.radiance[i].z) ? 0 : 1;
         cloth.add(a.radiance[i]);
-        const glm::vec3 c = centroid(with, t);
-        const float facing = std::abs(glm::dot(triangle_normal(with, t), glm::normalize(camera.look_from.glm() - c)));
+        const float facing = std::abs(facing_camera(with, t, camera));
         if (facing < 0.3f) grazing_with.add(a.radiance[i]), grazing_without.add(b.radiance[i]);
         if (facing > 0.8f) facing_with.add(a.radiance[i]), facing_without.add(b.radiance[i]);
     }
