@@ -2,8 +2,10 @@
  * adjoint.cl — the adjoint of the path integrator (path replay backpropagation): gradients of
  * a loss of the image with respect to the scene's parameters. One work-item per pixel and run
  * of samples (all of the pixel's on CPUs, one on GPUs: the host's choice); for each sample it
- *   1. traces the path as megakernel.cl does (the same calls with the same random-number keys,
- *      gc_shade_vertex), to learn the sample's radiance L;
+ *   1. learns the sample's radiance L: from the path states of the wavefront pass the host ran
+ *      just before over the same pixels and samples (`primal`, on GPUs: the same bits, traced
+ *      faster), or by tracing the path itself as megakernel.cl does (the same calls with the
+ *      same random-number keys, gc_shade_vertex);
  *   2. traces it again, and at each vertex gc_vertex_adjoint adds the derivative of what the
  *      vertex contributed, weighted by d loss / d L, to the parameters' slots.
  * The second pass needs only L and the running sum, not the vertices of the first, so memory
@@ -43,16 +45,21 @@ static float3 gc_adjoint_path(const GcRenderParams params, GC_SCENE_PARAMS, GcGr
     return GC_XYZ(path.radiance);
 }
 
-/* Samples [first, end) of the pass at one pixel: each sample's path for L, then its derivatives. */
-static void gc_adjoint_pixel(const GcRenderParams params, GC_SCENE_PARAMS, GcGradTarget g, const uint pixel,
-                             const float3 delta, const uint first, const uint end)
+/* Samples [first, end) of the pass at the batch's pixel `slot`: each sample's L (from `primal`,
+ * laid out as generate.cl lays out a pass's paths, where given), then its derivatives. */
+static void gc_adjoint_pixel(const GcRenderParams params, GC_SCENE_PARAMS, GcGradTarget g, const uint slot,
+                             const float3 delta, const uint first, const uint end,
+                             __global const GcPathState* primal, const bool primal_given)
 {
+    const uint pixel = params.pixel_offset + slot;
     for (uint k = first; k < end; ++k) {
         const uint sample = params.sample_index + k;
         const float4 jitter = gc_sample4(params, pixel, sample, GC_RNG_BLOCK_CAMERA);
         const GcRay ray = gc_camera_sample(params.camera, params.width, params.height, pixel % params.width,
                                            pixel / params.width, jitter);
-        const float3 L = gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, false, (float3)(0.0f), delta);
+        const float3 L = primal_given ? GC_XYZ(primal[slot * params.samples_in_pass + k].radiance)
+                                      : gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, false,
+                                                        (float3)(0.0f), delta);
         if (!(isfinite(L.x) && isfinite(L.y) && isfinite(L.z))) continue;
         gc_adjoint_path(params, GC_SCENE_ARGS, g, pixel, sample, ray, true, L, delta);
     }
@@ -64,6 +71,8 @@ __kernel void path_adjoint(const GcRenderParams params,
                            __global ulong* slots,
                            __global uint* max_bits,
                            __global const uint* view_slots,
+                           __global const GcPathState* primal,
+                           const uint primal_given,
                            const float scale,
                            const uint env_slot,
                            const uint slot_count,
@@ -91,11 +100,11 @@ __kernel void path_adjoint(const GcRenderParams params,
     const uint item = get_global_id(0);
     const uint first = (item / params.pixel_count) * samples_per_item;
     if (first < params.samples_in_pass) {
-        const uint pixel = params.pixel_offset + item % params.pixel_count;
-        const float3 delta = loss_grad[pixel].xyz;
+        const uint slot = item % params.pixel_count;
+        const float3 delta = loss_grad[params.pixel_offset + slot].xyz;
         if (delta.x != 0.0f || delta.y != 0.0f || delta.z != 0.0f)
-            gc_adjoint_pixel(params, GC_SCENE_ARGS, g, pixel, delta, first,
-                             min(first + samples_per_item, params.samples_in_pass));
+            gc_adjoint_pixel(params, GC_SCENE_ARGS, g, slot, delta, first,
+                             min(first + samples_per_item, params.samples_in_pass), primal, primal_given != 0u);
     }
 #if GC_GRAD_GROUP_SLOTS > 0
     barrier(CLK_LOCAL_MEM_FENCE);

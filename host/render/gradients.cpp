@@ -147,6 +147,32 @@ void PathAdjoint::build(const Renderer& renderer)
         std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
     m_features = scene.features;
+    m_wavefront_primal =
+        m_options.primal == PrimalPass::Wavefront ||
+        (m_options.primal == PrimalPass::Auto && !path_megakernel_for(m_context.device(), renderer.setup().tuning.path_kernel));
+    m_primal.reset();
+    // Built with the adjoint, sized for the renderer's sample count (a backward pass of another
+    // count remakes its buffers; the program comes from the cache then).
+    if (m_wavefront_primal) primal_integrator(renderer, std::max(renderer.settings().spp, 1u));
+    if (!m_no_primal) m_no_primal = cl::Buffer<dev::GcPathState>::create(m_context, 1, CL_MEM_READ_ONLY, "no primal paths");
+}
+
+WavefrontPathIntegrator& PathAdjoint::primal_integrator(const Renderer& renderer, std::uint32_t spp)
+{
+    if (m_primal && m_primal_spp == spp) return *m_primal;
+    m_primal.reset();
+    // Path slots for every pixel's spp samples, up to the wavefront's size (path_capacity).
+    RenderSettings settings = renderer.settings();
+    settings.spp = spp;
+    m_primal = std::make_unique<WavefrontPathIntegrator>(m_context, renderer.device_scene(), settings, renderer.setup(),
+                                                         renderer.batch_pixels());
+    m_primal_spp = spp;
+    // Its passes accumulate into a film of their own, never read: the renderer's stays as it was.
+    const std::size_t pixels = std::size_t(settings.width) * std::size_t(settings.height);
+    m_primal_film.sums = cl::Buffer<glm::vec4>::create(m_context, pixels, CL_MEM_READ_WRITE, "primal film sums");
+    m_primal_film.squares = cl::Buffer<glm::vec4>::create(m_context, pixels, CL_MEM_READ_WRITE, "primal film squares");
+    m_primal_film.pixel_list = cl::Buffer<std::uint32_t>::create(m_context, 1, CL_MEM_READ_ONLY, "primal pixel list");
+    return *m_primal;
 }
 
 Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scene,
@@ -213,8 +239,23 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     // the groups sum their slots.
     const bool gpu = m_context.device().is_gpu;
     const std::size_t local_size = gpu ? 0 : (group_sums() ? 16 : 1);
-    const std::uint32_t per_item = samples_per_item(m_options.samples_per_item, gpu, pixels, spp);
-    const std::size_t items = std::size_t(pixels) * ((spp + per_item - 1) / per_item);
+    // The adjoint's launches: one over every pixel and sample where it traces L itself; where
+    // the wavefront traces it, one after each of the wavefront's batches (as many samples of
+    // as many pixels as its path slots hold), reading that batch's paths.
+    WavefrontPathIntegrator* primal = m_wavefront_primal ? &primal_integrator(renderer, spp) : nullptr;
+    const std::uint32_t batch_pixels = primal ? std::min(pixels, renderer.batch_pixels()) : pixels;
+    const std::uint32_t pass_samples = primal ? std::min(spp, primal->max_samples_per_pass(batch_pixels)) : spp;
+    const auto launch_adjoint = [&](const dev::GcRenderParams& batch, const cl::Buffer<dev::GcPathState>& paths,
+                                    float scale) {
+        const std::uint32_t per_item =
+            samples_per_item(m_options.samples_per_item, gpu, batch.pixel_count, batch.samples_in_pass);
+        const std::size_t items =
+            std::size_t(batch.pixel_count) * ((batch.samples_in_pass + per_item - 1) / per_item);
+        m_kernel.set_args(batch, scene.scene_args(), deltas, slots, max_bits, view_slots, paths,
+                          primal ? 1u : 0u, scale, layout.env_slot, slot_count,
+                          static_cast<std::uint32_t>(layout.view_slots.size()), per_item);
+        m_kernel.launch(m_context, items, local_size, "adjoint paths");
+    };
     std::vector<std::uint64_t> sums(slot_count, 0);
     m_stats = {};
     for (int attempt = 0; attempt < 2; ++attempt) {
@@ -223,11 +264,23 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
         slots.write(zeros);
         const std::uint32_t zero = 0;
         max_bits.write(std::span<const std::uint32_t>(&zero, 1));
-        m_kernel.set_args(p, scene.scene_args(), deltas, slots, max_bits, view_slots,
-                          std::ldexp(1.0f, e), layout.env_slot, slot_count,
-                          static_cast<std::uint32_t>(layout.view_slots.size()), per_item);
-        if (max_delta > 0.0) m_kernel.launch(m_context, items, local_size, "adjoint paths");
+        const float scale = std::ldexp(1.0f, e);
+        if (max_delta > 0.0 && primal) {
+            for (std::uint32_t first = 0; first < spp; first += pass_samples)
+                for (std::uint32_t offset = 0; offset < pixels; offset += batch_pixels) {
+                    dev::GcRenderParams batch = p;
+                    batch.sample_index = first;
+                    batch.samples_in_pass = std::min(pass_samples, spp - first);
+                    batch.pixel_offset = offset;
+                    batch.pixel_count = std::min(batch_pixels, pixels - offset);
+                    primal->render_batch(batch, scene, m_primal_film);
+                    launch_adjoint(batch, primal->paths(), scale);
+                }
+        } else if (max_delta > 0.0) {
+            launch_adjoint(p, m_no_primal, scale);
+        }
         m_context.finish();
+        if (primal && max_delta > 0.0) primal->end_pass();
         std::uint32_t bits = 0;
         max_bits.read(std::span<std::uint32_t>(&bits, 1));
         if (bits == GC_GRAD_OUT_OF_RANGE)

@@ -26,6 +26,7 @@
 #include "host/cl/kernel.h"
 #include "host/cl/program.h"
 #include "host/render/renderer.h"
+#include "host/render/wavefront_path.h"
 
 namespace gc {
 
@@ -50,6 +51,13 @@ enum class SlotAtomics { Auto, Split32 };
 // CPUs). The bits are the same either way.
 enum class GroupSums { Auto, On, Off };
 
+// Where the adjoint learns each sample's radiance L before it replays the path: from a pass of
+// the wavefront path integrator over the same pixels and samples (its path states, read by the
+// adjoint kernel), or by tracing the path once more inside the adjoint kernel. Auto = the
+// wavefront where the renderer uses it (GPUs: its passes keep the device busier than one
+// long work-item per sample does), in the kernel elsewhere. The two give the same bits.
+enum class PrimalPass { Auto, InKernel, Wavefront };
+
 // How the adjoint's work is laid out and summed; every choice gives the same bits.
 struct AdjointOptions {
     SlotAtomics atomics = SlotAtomics::Auto;
@@ -59,6 +67,7 @@ struct AdjointOptions {
     // megakernel), one on GPUs (pixels x spp items keep the GPU full where pixels alone would
     // not, and no item waits on another's long paths; docs/performance.md, "Gradients").
     std::uint32_t samples_per_item = 0;
+    PrimalPass primal = PrimalPass::Auto;
 };
 
 class PathAdjoint {
@@ -80,6 +89,8 @@ public:
 private:
     void build(const Renderer& renderer);
     bool group_sums() const { return m_options.group_sums == GroupSums::On; }  // Auto is off
+    // The wavefront integrator for the primal pass of `spp` samples, made or remade as needed.
+    WavefrontPathIntegrator& primal_integrator(const Renderer& renderer, std::uint32_t spp);
     template <class T>
     cl::Buffer<T>& sized(cl::Buffer<T>& buffer, std::size_t count, cl_mem_flags flags, const char* name);
 
@@ -93,6 +104,11 @@ private:
     cl::Buffer<std::uint64_t> m_slots;       // the fixed-point sums (gc_grad_slots.h)
     cl::Buffer<std::uint32_t> m_max_bits;    // the largest contribution's float bits
     cl::Buffer<std::uint32_t> m_view_slots;  // per texture view, its texels' first slot
+    bool m_wavefront_primal = false;         // PrimalPass resolved for the renderer's device
+    std::unique_ptr<WavefrontPathIntegrator> m_primal;  // its paths give the adjoint each sample's L
+    std::uint32_t m_primal_spp = 0;          // the sample count m_primal's path slots were sized for
+    FilmBuffers m_primal_film;               // where its passes accumulate (the renderer's film stays)
+    cl::Buffer<dev::GcPathState> m_no_primal;  // the kernel's argument when L is traced in it
 };
 
 }  // namespace gc

@@ -33,6 +33,10 @@ public:
     // the next one and its shadow rays (2 x max_depth values; zeros before the first pass and
     // past the depth where every path ended).
     std::span<const std::uint32_t> last_queue_lengths() const { return m_last_queue_lengths; }
+    // The path states of the last batch: slot p * samples_in_pass + s holds sample s of the
+    // batch's pixel p (generate.cl), its radiance final once the batch has run. The adjoint
+    // reads each sample's radiance there (gradients.h, PrimalPass).
+    const cl::Buffer<dev::GcPathState>& paths() const { return m_paths; }
 
 private:
     const cl::Context& m_context;

@@ -563,8 +563,9 @@ TEST_F(GradientTest, RussianRouletteKeepsTheGradientUnbiased)
 }
 
 // Two 32-bit atomics with a carry give the same sums as 64-bit ones, a work-group's sums in
-// local memory (GroupSums) the same as each work-item's own additions, and work-items of one,
-// three (a short last run) or all four samples of a pixel the same, bit for bit. The floor's
+// local memory (GroupSums) the same as each work-item's own additions, work-items of one,
+// three (a short last run) or all four samples of a pixel the same, and each sample's radiance
+// from a wavefront pass the same as from the adjoint kernel's own trace, bit for bit. The floor's
 // 16 x 16 texture puts its texels' slots on both sides of the group's 512.
 TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
 {
@@ -582,7 +583,7 @@ TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
     std::vector<std::string> names;
     for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
     ASSERT_EQ(names.back(), "textures/0/texels");
-    PathAdjoint plain(*rig.renderer, {SlotAtomics::Auto, GroupSums::Off, 4});
+    PathAdjoint plain(*rig.renderer, {SlotAtomics::Auto, GroupSums::Off, 4, PrimalPass::InKernel});
     const Gradients a = plain.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
     const struct {
         const char* what;
@@ -591,7 +592,9 @@ TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
                 {"group sums", {SlotAtomics::Auto, GroupSums::On, 4}},
                 {"group sums, split atomics", {SlotAtomics::Split32, GroupSums::On, 4}},
                 {"a sample per item", {SlotAtomics::Auto, GroupSums::Off, 1}},
-                {"3 samples per item", {SlotAtomics::Auto, GroupSums::Off, 3}}};
+                {"3 samples per item", {SlotAtomics::Auto, GroupSums::Off, 3}},
+                {"radiance from a wavefront", {SlotAtomics::Auto, GroupSums::Off, 1, PrimalPass::Wavefront}},
+                {"wavefront, 3 per item", {SlotAtomics::Auto, GroupSums::Off, 3, PrimalPass::Wavefront}}};
     for (const auto& way : ways) {
         PathAdjoint other(*rig.renderer, way.options);
         const Gradients b = other.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
@@ -601,6 +604,20 @@ TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
                         b.at(name)[2]);
             EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float)))
                 << way.what << ": " << name;
+        }
+    }
+    // A wavefront smaller than the pass: 320 paths cut it into batches of 320, 320 and 128
+    // pixels at a sample each; 1536 into two passes of two samples of every pixel.
+    for (const std::uint32_t wavefront : {320u, 1536u}) {
+        RenderSettings cut = settings;
+        cut.wavefront_size = wavefront;
+        Renderer renderer(*context, rig.device, box_camera(), cut);
+        PathAdjoint other(renderer, {SlotAtomics::Auto, GroupSums::Off, 0, PrimalPass::Wavefront});
+        const Gradients b = other.backward(renderer, rig.scene, weights, names, 4, 2);
+        for (const std::string& name : names) {
+            ASSERT_EQ(a.at(name).size(), b.at(name).size());
+            EXPECT_EQ(0, std::memcmp(a.at(name).data(), b.at(name).data(), a.at(name).size() * sizeof(float)))
+                << "a wavefront of " << wavefront << " paths: " << name;
         }
     }
 }

@@ -3,7 +3,8 @@
 //
 //   geocold-grad-bench [--device SPEC[,SPEC]] [--sizes 128:4,512:16] [--depth 6] [--repeats N]
 //                      [--memory-size 512:16] [--memory-depths 6,64] [--params leftWall|walls]
-//                      [--threads N] [--group-sums auto|on|off] [--samples-per-item N] [--no-time]
+//                      [--threads N] [--group-sums auto|on|off] [--samples-per-item N]
+//                      [--primal auto|kernel|wavefront] [--no-time]
 //                      [--no-memory] [--determinism] [--view]
 //
 // An iteration is what an optimiser's step costs: Renderer::render of spp samples (film
@@ -83,6 +84,8 @@ const char* kUsage =
     "  --threads N           CPU device threads (PoCL)\n"
     "  --group-sums auto|on|off  work-group sums of the gradient slots (default auto: off)\n"
     "  --samples-per-item N  samples of a pixel one adjoint work-item traces (default: the device's choice)\n"
+    "  --primal auto|kernel|wavefront  where the adjoint learns each sample's radiance (default auto:\n"
+    "                        the wavefront where the renderer runs it)\n"
     "  --no-time             skip the timed iterations\n"
     "  --no-memory           skip the memory figures\n"
     "  --determinism         per device, two iterations' gradient bits and whether they agree; across\n"
@@ -162,6 +165,12 @@ GradOptions parse(int argc, char** argv)
             else if (v == "on") o.adjoint.group_sums = GroupSums::On;
             else if (v == "off") o.adjoint.group_sums = GroupSums::Off;
             else throw UsageError("--group-sums: '" + v + "' is not auto, on or off");
+        } else if (a == "--primal") {
+            const std::string v = value();
+            if (v == "auto") o.adjoint.primal = PrimalPass::Auto;
+            else if (v == "kernel") o.adjoint.primal = PrimalPass::InKernel;
+            else if (v == "wavefront") o.adjoint.primal = PrimalPass::Wavefront;
+            else throw UsageError("--primal: '" + v + "' is not auto, kernel or wavefront");
         } else if (a == "--samples-per-item") {
             o.adjoint.samples_per_item = positive(a, value());
         } else if (a == "--no-time") {

@@ -96,14 +96,13 @@ else
     echo "== no Mitsuba (GEOCOLD_PACK_MITSUBA=1 tools/device/prepare-deps.sh carries it): ours alone" >> "$log"
     step "speed-$gpu" "$bench" --device "$gpu" --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
 fi
-# How the adjoint's work is cut and summed: work-items of one sample of a pixel (the GPU's
-# default) with the work-group sums of the slots off and on, and of two samples, one process
-# each; for one parameter and for the seven walls, whose every hit adds to a slot (the atomics'
-# contention the group sums are for).
-for way in leftWall:1:off leftWall:1:on leftWall:2:off walls:1:off walls:1:on; do
-    IFS=: read -r which per_item sums <<< "$way"
-    step "speed-$gpu-$which-samples-per-item-$per_item-group-sums-$sums" "$bench" --device "$gpu" --sizes "$sizes" \
-        --repeats "$repeats" --no-memory --params "$which" --samples-per-item "$per_item" --group-sums "$sums" "$@"
+# Where the adjoint learns each sample's radiance: a wavefront pass (the GPU's default, timed
+# against Mitsuba above) against the path traced once more in the adjoint kernel, one process
+# each, alternated, for one parameter and for the seven walls.
+for way in leftWall:kernel leftWall:wavefront walls:kernel walls:wavefront; do
+    IFS=: read -r which primal <<< "$way"
+    step "speed-$gpu-$which-primal-$primal" "$bench" --device "$gpu" --sizes "$sizes" \
+        --repeats "$repeats" --no-memory --params "$which" --primal "$primal" "$@"
 done
 [ "${GEOCOLD_GRAD_SPEED_ONLY:-0}" != 1 ] || { cat "$log"; exit "$status"; }
 step speed-pocl "$bench" --device cpu --sizes "$sizes" --repeats "$repeats" --no-memory "$@"
