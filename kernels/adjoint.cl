@@ -71,6 +71,7 @@ __kernel void path_adjoint(const GcRenderParams params,
                            __global ulong* slots,
                            __global uint* max_bits,
                            __global const uint* view_slots,
+                           __global const uint* wanted,
                            __global const GcPathState* primal,
                            const uint primal_given,
                            const float scale,
@@ -84,7 +85,9 @@ __kernel void path_adjoint(const GcRenderParams params,
     g.max_bits = max_bits;
     g.view_slots = view_slots;
     g.scale = scale;
+    g.wanted = wanted;
     g.env_slot = env_slot;
+    g.texel_slot = env_slot + GC_GRAD_ENV_SLOTS;
     g.slot_count = slot_count;
     g.view_count = view_count;
 #if GC_GRAD_GROUP_SLOTS > 0

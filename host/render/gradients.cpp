@@ -206,6 +206,14 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     cl::Buffer<std::uint32_t>& view_slots =
         sized(m_view_slots, layout.view_slots.size(), CL_MEM_READ_ONLY, "texel gradient slots");
     view_slots.write(layout.view_slots);
+    // Bit i: material or environment slot i was asked for (gc_grad_slots.h).
+    const std::uint32_t texel_slot = layout.env_slot + GC_GRAD_ENV_SLOTS;
+    std::vector<std::uint32_t> wanted_bits((texel_slot + 31) / 32, 0u);
+    for (const ParamRef& ref : refs)
+        if (ref.kind != ParamRef::Kind::Texels)
+            for (std::uint32_t s : slots_of(ref, layout, host_scene)) wanted_bits[s / 32] |= 1u << (s % 32);
+    cl::Buffer<std::uint32_t>& wanted = sized(m_wanted, wanted_bits.size(), CL_MEM_READ_ONLY, "gradients asked for");
+    wanted.write(wanted_bits);
 
     // Each sample's share of d loss / d (pixel mean).
     std::vector<glm::vec4> per_sample(pixels);
@@ -251,7 +259,7 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
             samples_per_item(m_options.samples_per_item, gpu, batch.pixel_count, batch.samples_in_pass);
         const std::size_t items =
             std::size_t(batch.pixel_count) * ((batch.samples_in_pass + per_item - 1) / per_item);
-        m_kernel.set_args(batch, scene.scene_args(), deltas, slots, max_bits, view_slots, paths,
+        m_kernel.set_args(batch, scene.scene_args(), deltas, slots, max_bits, view_slots, wanted, paths,
                           primal ? 1u : 0u, scale, layout.env_slot, slot_count,
                           static_cast<std::uint32_t>(layout.view_slots.size()), per_item);
         m_kernel.launch(m_context, items, local_size, "adjoint paths");

@@ -104,6 +104,7 @@ private:
     cl::Buffer<std::uint64_t> m_slots;       // the fixed-point sums (gc_grad_slots.h)
     cl::Buffer<std::uint32_t> m_max_bits;    // the largest contribution's float bits
     cl::Buffer<std::uint32_t> m_view_slots;  // per texture view, its texels' first slot
+    cl::Buffer<std::uint32_t> m_wanted;      // a bit per material and environment slot asked for
     bool m_wavefront_primal = false;         // PrimalPass resolved for the renderer's device
     std::unique_ptr<WavefrontPathIntegrator> m_primal;  // its paths give the adjoint each sample's L
     std::uint32_t m_primal_spp = 0;          // the sample count m_primal's path slots were sized for

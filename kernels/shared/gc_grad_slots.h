@@ -8,6 +8,10 @@
  *     texel j of a texture    view_slots[view] + 4 j + channel   (views of textures asked for;
  *                                                                 GC_INVALID for the others)
  *
+ * Only the slots of the parameters asked for are added to: `wanted` has a bit per material and
+ * environment slot (texels have slots only where asked for), so a pass for one wall's colour
+ * does not pay every vertex's atomics to the lights' emission and the other materials' slots.
+ *
  * Fixed point, not floating-point atomics (docs/decisions/deterministic-gradients.md):
  * integer addition is associative, so the sum is the same bits in whatever order the
  * work-items add. A contribution x becomes round(x * scale), scale = 2^e chosen by the host
@@ -52,8 +56,10 @@ typedef struct {
     __global ulong* slots;
     __global uint* max_bits; /* the largest |contribution| of the pass, as float bits */
     __global const uint* view_slots; /* per texture view: its texels' first slot, or GC_INVALID */
+    __global const uint* wanted;     /* bit i of word i / 32: slot i < texel_slot was asked for */
     float scale;             /* 2^e: one unit of a slot is 1 / scale */
     uint env_slot;
+    uint texel_slot;         /* the first texel slot: env_slot + GC_GRAD_ENV_SLOTS */
     uint slot_count;         /* slots' length: an index beyond it is a bug, flagged, not written */
     uint view_count;         /* view_slots' length */
 #if GC_GRAD_GROUP_SLOTS > 0
@@ -104,6 +110,7 @@ static inline void gc_grad_add(GcGradTarget g, uint i, float x)
         gc_grad_flag_out_of_range(g);
         return;
     }
+    if (i < g.texel_slot && ((g.wanted[i >> 5] >> (i & 31u)) & 1u) == 0u) return;
     /* Every work-item's every contribution would meet at this one address. The largest only
      * grows, so a plain read that is already at least |x| (a stale one is only smaller) makes
      * the atomic redundant; the final value is the same. */
