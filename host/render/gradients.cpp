@@ -23,6 +23,12 @@ constexpr double k_contributions_per_vertex = 4.0;
 // environment's of a scene of up to 31 materials.
 constexpr std::uint32_t k_group_slots = 512;
 
+// The fewest paths (pixels x spp) for which PrimalPass::Auto traces the radiance in a wavefront
+// pass: below, the pass's launches cost more than they save (on an H100, 128x128 x 4 took
+// 0.0016-0.0020 s an iteration that way against 0.0013-0.0015 s in the adjoint kernel, and
+// 512x512 x 16 0.042-0.046 s against 0.045-0.051 s; docs/performance.md, "Gradients").
+constexpr std::uint64_t k_wavefront_primal_paths = std::uint64_t(1) << 20;
+
 // Slots hold 64-bit signed sums; the scale keeps every possible sum within 2^62.
 constexpr double k_slot_limit = 4611686018427387904.0;  // 2^62
 
@@ -147,14 +153,25 @@ void PathAdjoint::build(const Renderer& renderer)
         std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
     m_features = scene.features;
-    m_wavefront_primal =
-        m_options.primal == PrimalPass::Wavefront ||
-        (m_options.primal == PrimalPass::Auto && !path_megakernel_for(m_context.device(), renderer.setup().tuning.path_kernel));
+    m_renderer_wavefront = !path_megakernel_for(m_context.device(), renderer.setup().tuning.path_kernel);
     m_primal.reset();
     // Built with the adjoint, sized for the renderer's sample count (a backward pass of another
     // count remakes its buffers; the program comes from the cache then).
-    if (m_wavefront_primal) primal_integrator(renderer, std::max(renderer.settings().spp, 1u));
+    const RenderSettings& settings = renderer.settings();
+    const std::uint32_t spp = std::max(settings.spp, 1u);
+    if (wavefront_primal(std::uint64_t(settings.width) * settings.height * spp))
+        primal_integrator(renderer, spp);
     if (!m_no_primal) m_no_primal = cl::Buffer<dev::GcPathState>::create(m_context, 1, CL_MEM_READ_ONLY, "no primal paths");
+}
+
+bool PathAdjoint::wavefront_primal(std::uint64_t paths) const
+{
+    switch (m_options.primal) {
+    case PrimalPass::InKernel: return false;
+    case PrimalPass::Wavefront: return true;
+    case PrimalPass::Auto: break;
+    }
+    return m_renderer_wavefront && paths >= k_wavefront_primal_paths;
 }
 
 WavefrontPathIntegrator& PathAdjoint::primal_integrator(const Renderer& renderer, std::uint32_t spp)
@@ -250,7 +267,8 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     // The adjoint's launches: one over every pixel and sample where it traces L itself; where
     // the wavefront traces it, one after each of the wavefront's batches (as many samples of
     // as many pixels as its path slots hold), reading that batch's paths.
-    WavefrontPathIntegrator* primal = m_wavefront_primal ? &primal_integrator(renderer, spp) : nullptr;
+    WavefrontPathIntegrator* primal =
+        wavefront_primal(std::uint64_t(pixels) * spp) ? &primal_integrator(renderer, spp) : nullptr;
     const std::uint32_t batch_pixels = primal ? std::min(pixels, renderer.batch_pixels()) : pixels;
     const std::uint32_t pass_samples = primal ? std::min(spp, primal->max_samples_per_pass(batch_pixels)) : spp;
     const auto launch_adjoint = [&](const dev::GcRenderParams& batch, const cl::Buffer<dev::GcPathState>& paths,

@@ -55,7 +55,8 @@ enum class GroupSums { Auto, On, Off };
 // the wavefront path integrator over the same pixels and samples (its path states, read by the
 // adjoint kernel), or by tracing the path once more inside the adjoint kernel. Auto = the
 // wavefront where the renderer uses it (GPUs: its passes keep the device busier than one
-// long work-item per sample does), in the kernel elsewhere. The two give the same bits.
+// long work-item per sample does) and the pass is large (small ones pay its launches for
+// little), in the kernel elsewhere. The two give the same bits.
 enum class PrimalPass { Auto, InKernel, Wavefront };
 
 // How the adjoint's work is laid out and summed; every choice gives the same bits.
@@ -89,6 +90,8 @@ public:
 private:
     void build(const Renderer& renderer);
     bool group_sums() const { return m_options.group_sums == GroupSums::On; }  // Auto is off
+    // Whether a pass of `paths` paths learns their radiance from a wavefront pass (PrimalPass).
+    bool wavefront_primal(std::uint64_t paths) const;
     // The wavefront integrator for the primal pass of `spp` samples, made or remade as needed.
     WavefrontPathIntegrator& primal_integrator(const Renderer& renderer, std::uint32_t spp);
     template <class T>
@@ -105,7 +108,7 @@ private:
     cl::Buffer<std::uint32_t> m_max_bits;    // the largest contribution's float bits
     cl::Buffer<std::uint32_t> m_view_slots;  // per texture view, its texels' first slot
     cl::Buffer<std::uint32_t> m_wanted;      // a bit per material and environment slot asked for
-    bool m_wavefront_primal = false;         // PrimalPass resolved for the renderer's device
+    bool m_renderer_wavefront = false;       // the renderer traces paths in wavefront form
     std::unique_ptr<WavefrontPathIntegrator> m_primal;  // its paths give the adjoint each sample's L
     std::uint32_t m_primal_spp = 0;          // the sample count m_primal's path slots were sized for
     FilmBuffers m_primal_film;               // where its passes accumulate (the renderer's film stays)
