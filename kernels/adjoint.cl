@@ -90,14 +90,6 @@ __kernel void path_adjoint(const GcRenderParams params,
     g.texel_slot = env_slot + GC_GRAD_ENV_SLOTS;
     g.slot_count = slot_count;
     g.view_count = view_count;
-#if GC_GRAD_GROUP_SLOTS > 0
-    /* No work-item returns before the barriers: all of the group must reach them. */
-    __local ulong group_slots[GC_GRAD_GROUP_SLOTS];
-    g.group_slots = group_slots;
-    g.group_count = min(slot_count, GC_GRAD_GROUP_SLOTS);
-    for (uint i = get_local_id(0); i < g.group_count; i += get_local_size(0)) group_slots[i] = 0ul;
-    barrier(CLK_LOCAL_MEM_FENCE);
-#endif
     /* Work-item i takes pixel i mod pixel_count and the (i / pixel_count)-th run of
      * samples_per_item samples there: neighbouring items trace neighbouring pixels. */
     const uint item = get_global_id(0);
@@ -109,11 +101,4 @@ __kernel void path_adjoint(const GcRenderParams params,
             gc_adjoint_pixel(params, GC_SCENE_ARGS, g, slot, delta, first,
                              min(first + samples_per_item, params.samples_in_pass), primal, primal_given != 0u);
     }
-#if GC_GRAD_GROUP_SLOTS > 0
-    barrier(CLK_LOCAL_MEM_FENCE);
-    for (uint i = get_local_id(0); i < g.group_count; i += get_local_size(0)) {
-        const ulong sum = group_slots[i];
-        if (sum != 0ul) GC_GRAD_ATOMIC_ADD(__global, slots, i, sum);
-    }
-#endif
 }

@@ -19,10 +19,6 @@ namespace {
 // environment the same two, a texel four (a lookup's four taps may all be that texel).
 constexpr double k_contributions_per_vertex = 4.0;
 
-// The slots a work-group sums in local memory (GroupSums): 4 KiB, the materials' and the
-// environment's of a scene of up to 31 materials.
-constexpr std::uint32_t k_group_slots = 512;
-
 // The fewest paths (pixels x spp) for which PrimalPass::Auto traces the radiance in a wavefront
 // pass: below, the pass's launches cost more than they save (on an H100, 128x128 x 4 took
 // 0.0016-0.0020 s an iteration that way against 0.0013-0.0015 s in the adjoint kernel, and
@@ -148,7 +144,6 @@ void PathAdjoint::build(const Renderer& renderer)
     const DeviceScene& scene = renderer.device_scene();
     std::string options = scene_program_options(scene);
     if (m_options.atomics == SlotAtomics::Split32) options += " -D GC_GRAD_SPLIT_ATOMICS";
-    if (group_sums()) options += " -D GC_GRAD_GROUP_SLOTS=" + std::to_string(k_group_slots) + "u";
     m_program =
         std::make_unique<cl::Program>(m_context, "adjoint.cl", options, renderer.setup().build);
     m_kernel = m_program->kernel("path_adjoint");
@@ -260,10 +255,9 @@ Gradients PathAdjoint::backward(const Renderer& renderer, const Scene& host_scen
     const double count = static_cast<double>(pixels) * spp * std::max(settings.max_depth, 1u) *
                          k_contributions_per_vertex;
     double bound = max_delta * 256.0;
-    // One work-item per group on CPUs, as the megakernel (megakernel_path.cpp says why), unless
-    // the groups sum their slots.
+    // One work-item per group on CPUs, as the megakernel (megakernel_path.cpp says why).
     const bool gpu = m_context.device().is_gpu;
-    const std::size_t local_size = gpu ? 0 : (group_sums() ? 16 : 1);
+    const std::size_t local_size = gpu ? 0 : 1;
     // The adjoint's launches: one over every pixel and sample where it traces L itself; where
     // the wavefront traces it, one after each of the wavefront's batches (as many samples of
     // as many pixels as its path slots hold), reading that batch's paths.

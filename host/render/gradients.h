@@ -44,13 +44,6 @@ struct GradientStats {
 // (else two 32-bit ones), or always with two 32-bit ones (to test that way on any device).
 enum class SlotAtomics { Auto, Split32 };
 
-// Whether each work-group sums its additions to the materials' and the environment's slots in
-// local memory and adds those sums once (gc_grad_slots.h). Auto = off: measured slower on a
-// GPU (docs/performance.md, "Gradients"), the atomics at a few addresses costing less than the
-// group's barriers and local sums. On tests it on any device (in groups of 16 work-items on
-// CPUs). The bits are the same either way.
-enum class GroupSums { Auto, On, Off };
-
 // Where the adjoint learns each sample's radiance L before it replays the path: from a pass of
 // the wavefront path integrator over the same pixels and samples (its path states, read by the
 // adjoint kernel), or by tracing the path once more inside the adjoint kernel. Auto = the
@@ -62,7 +55,6 @@ enum class PrimalPass { Auto, InKernel, Wavefront };
 // How the adjoint's work is laid out and summed; every choice gives the same bits.
 struct AdjointOptions {
     SlotAtomics atomics = SlotAtomics::Auto;
-    GroupSums group_sums = GroupSums::Auto;
     // Samples of one pixel a work-item traces, one after another. 0 = the device's choice:
     // every sample of the pixel on CPUs (one long-lived item per core's turn, as the
     // megakernel), one on GPUs (pixels x spp items keep the GPU full where pixels alone would
@@ -89,7 +81,6 @@ public:
 
 private:
     void build(const Renderer& renderer);
-    bool group_sums() const { return m_options.group_sums == GroupSums::On; }  // Auto is off
     // Whether a pass of `paths` paths learns their radiance from a wavefront pass (PrimalPass).
     bool wavefront_primal(std::uint64_t paths) const;
     // The wavefront integrator for the primal pass of `spp` samples, made or remade as needed.

@@ -19,12 +19,6 @@
  * float bits, also order-independent) so that the host can check that choice afterwards.
  * Devices with cl_khr_int64_base_atomics add with one 64-bit atomic; others with two 32-bit
  * ones, the low word's carry added to the high word (the final value is the same, exact).
- *
- * With GC_GRAD_GROUP_SLOTS = n > 0 (the host's choice on GPUs), a work-group first adds its
- * contributions to slots below n (the materials' and the environment's, where every work-item
- * would otherwise meet at the same few addresses) in local memory, and adds each of those
- * partial sums to the global slot once at the end. Integer sums modulo 2^64, so the bits are
- * the same as without.
  */
 #ifndef GC_GRAD_SLOTS_H
 #define GC_GRAD_SLOTS_H
@@ -40,9 +34,6 @@
 /* The largest contribution's value once a slot or view index was out of range: above every
  * float's bits, so the atomic max keeps it, and the host reports the pass as failed. */
 #define GC_GRAD_OUT_OF_RANGE 0xFFFFFFFFu
-#ifndef GC_GRAD_GROUP_SLOTS
-#define GC_GRAD_GROUP_SLOTS 0u
-#endif
 
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 
@@ -62,22 +53,17 @@ typedef struct {
     uint texel_slot;         /* the first texel slot: env_slot + GC_GRAD_ENV_SLOTS */
     uint slot_count;         /* slots' length: an index beyond it is a bug, flagged, not written */
     uint view_count;         /* view_slots' length */
-#if GC_GRAD_GROUP_SLOTS > 0
-    __local ulong* group_slots; /* the work-group's partial sums of slots [0, group_count) */
-    uint group_count;
-#endif
 } GcGradTarget;
 
-/* Adds v to the 64-bit slot i of `slots` (a __global or a __local array), exactly and in any
- * order. Without 64-bit atomics: little-endian, the low word first; both words wrap modulo
+/* Adds v to the 64-bit slot i of `slots`, exactly and in any order. Without 64-bit atomics: little-endian, the low word first; both words wrap modulo
  * 2^32 and the carry out of the low word goes into the high one, so the two words end as the
  * 64-bit sum. */
 #if defined(GC_GRAD_INT64_ATOMICS)
-#define GC_GRAD_ATOMIC_ADD(space, slots, i, v) atom_add(&(slots)[i], (ulong)(v))
+#define GC_GRAD_ATOMIC_ADD(slots, i, v) atom_add(&(slots)[i], (ulong)(v))
 #else
-#define GC_GRAD_ATOMIC_ADD(space, slots, i, v)                                     \
+#define GC_GRAD_ATOMIC_ADD(slots, i, v)                                            \
     do {                                                                           \
-        space uint* words_ = (space uint*)(slots);                                 \
+        __global uint* words_ = (__global uint*)(slots);                           \
         const uint lo_ = (uint)((ulong)(v));                                       \
         const uint hi_ = (uint)((ulong)(v) >> 32);                                 \
         const uint old_ = atomic_add(&words_[2u * (i)], lo_);                      \
@@ -85,18 +71,6 @@ typedef struct {
         if (hi_ + carry_ != 0u) atomic_add(&words_[2u * (i) + 1u], hi_ + carry_);  \
     } while (0)
 #endif
-
-/* Adds v to slot i, in the work-group's partial sums where it keeps that slot. */
-static inline void gc_grad_add_fixed(GcGradTarget g, uint i, long v)
-{
-#if GC_GRAD_GROUP_SLOTS > 0
-    if (i < g.group_count) {
-        GC_GRAD_ATOMIC_ADD(__local, g.group_slots, i, v);
-        return;
-    }
-#endif
-    GC_GRAD_ATOMIC_ADD(__global, g.slots, i, v);
-}
 
 /* Marks the pass as failed: an index was out of range (a bug); nothing is written there. */
 static inline void gc_grad_flag_out_of_range(GcGradTarget g) { atomic_max(g.max_bits, GC_GRAD_OUT_OF_RANGE); }
@@ -117,7 +91,7 @@ static inline void gc_grad_add(GcGradTarget g, uint i, float x)
     const uint bits = as_uint(fabs(x));
     if (bits > *g.max_bits) atomic_max(g.max_bits, bits);
     const long v = convert_long_sat_rte(x * g.scale);
-    if (v != 0) gc_grad_add_fixed(g, i, v);
+    if (v != 0) GC_GRAD_ATOMIC_ADD(g.slots, i, v);
 }
 
 static inline void gc_grad_add3(GcGradTarget g, uint first, float3 x)

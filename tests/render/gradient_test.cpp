@@ -562,11 +562,10 @@ TEST_F(GradientTest, RussianRouletteKeepsTheGradientUnbiased)
     }
 }
 
-// Two 32-bit atomics with a carry give the same sums as 64-bit ones, a work-group's sums in
-// local memory (GroupSums) the same as each work-item's own additions, work-items of one,
+// Two 32-bit atomics with a carry give the same sums as 64-bit ones, work-items of one,
 // three (a short last run) or all four samples of a pixel the same, and each sample's radiance
 // from a wavefront pass the same as from the adjoint kernel's own trace, bit for bit. The floor's
-// 16 x 16 texture puts its texels' slots on both sides of the group's 512.
+// 16 x 16 texture has 1024 texel slots.
 TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
 {
     const RenderSettings settings = small_settings();
@@ -583,18 +582,16 @@ TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
     std::vector<std::string> names;
     for (const ParamInfo& p : rig.params->list()) names.push_back(p.name);
     ASSERT_EQ(names.back(), "textures/0/texels");
-    PathAdjoint plain(*rig.renderer, {SlotAtomics::Auto, GroupSums::Off, 4, PrimalPass::InKernel});
+    PathAdjoint plain(*rig.renderer, {SlotAtomics::Auto, 4, PrimalPass::InKernel});
     const Gradients a = plain.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
     const struct {
         const char* what;
         AdjointOptions options;
-    } ways[] = {{"split atomics", {SlotAtomics::Split32, GroupSums::Off, 4}},
-                {"group sums", {SlotAtomics::Auto, GroupSums::On, 4}},
-                {"group sums, split atomics", {SlotAtomics::Split32, GroupSums::On, 4}},
-                {"a sample per item", {SlotAtomics::Auto, GroupSums::Off, 1}},
-                {"3 samples per item", {SlotAtomics::Auto, GroupSums::Off, 3}},
-                {"radiance from a wavefront", {SlotAtomics::Auto, GroupSums::Off, 1, PrimalPass::Wavefront}},
-                {"wavefront, 3 per item", {SlotAtomics::Auto, GroupSums::Off, 3, PrimalPass::Wavefront}}};
+    } ways[] = {{"split atomics", {SlotAtomics::Split32, 4}},
+                {"a sample per item", {SlotAtomics::Auto, 1}},
+                {"3 samples per item", {SlotAtomics::Auto, 3}},
+                {"radiance from a wavefront", {SlotAtomics::Auto, 1, PrimalPass::Wavefront}},
+                {"wavefront, 3 per item", {SlotAtomics::Auto, 3, PrimalPass::Wavefront}}};
     for (const auto& way : ways) {
         PathAdjoint other(*rig.renderer, way.options);
         const Gradients b = other.backward(*rig.renderer, rig.scene, weights, names, 4, 2);
@@ -612,7 +609,7 @@ TEST_F(GradientTest, EveryWayOfAddingGivesTheSameBits)
         RenderSettings cut = settings;
         cut.wavefront_size = wavefront;
         Renderer renderer(*context, rig.device, box_camera(), cut);
-        PathAdjoint other(renderer, {SlotAtomics::Auto, GroupSums::Off, 0, PrimalPass::Wavefront});
+        PathAdjoint other(renderer, {SlotAtomics::Auto, 0, PrimalPass::Wavefront});
         const Gradients b = other.backward(renderer, rig.scene, weights, names, 4, 2);
         for (const std::string& name : names) {
             ASSERT_EQ(a.at(name).size(), b.at(name).size());

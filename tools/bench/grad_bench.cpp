@@ -3,7 +3,7 @@
 //
 //   geocold-grad-bench [--device SPEC[,SPEC]] [--sizes 128:4,512:16] [--depth 6] [--repeats N]
 //                      [--memory-size 512:16] [--memory-depths 6,64] [--params leftWall|walls]
-//                      [--threads N] [--group-sums auto|on|off] [--samples-per-item N]
+//                      [--threads N] [--samples-per-item N]
 //                      [--primal auto|kernel|wavefront] [--no-time]
 //                      [--no-memory] [--determinism] [--view]
 //
@@ -82,7 +82,6 @@ const char* kUsage =
     "  --memory-depths LIST  depths of the memory figures (default 6,64)\n"
     "  --params leftWall|walls  materials/leftWall/base_color, or every non-emitting material's base_color\n"
     "  --threads N           CPU device threads (PoCL)\n"
-    "  --group-sums auto|on|off  work-group sums of the gradient slots (default auto: off)\n"
     "  --samples-per-item N  samples of a pixel one adjoint work-item traces (default: the device's choice)\n"
     "  --primal auto|kernel|wavefront  where the adjoint learns each sample's radiance (default auto:\n"
     "                        the wavefront where the renderer runs it)\n"
@@ -159,12 +158,6 @@ GradOptions parse(int argc, char** argv)
             o.params = value();
             if (o.params != "leftWall" && o.params != "walls")
                 throw UsageError("--params: '" + o.params + "' is neither leftWall nor walls");
-        } else if (a == "--group-sums") {
-            const std::string v = value();
-            if (v == "auto") o.adjoint.group_sums = GroupSums::Auto;
-            else if (v == "on") o.adjoint.group_sums = GroupSums::On;
-            else if (v == "off") o.adjoint.group_sums = GroupSums::Off;
-            else throw UsageError("--group-sums: '" + v + "' is not auto, on or off");
         } else if (a == "--primal") {
             const std::string v = value();
             if (v == "auto") o.adjoint.primal = PrimalPass::Auto;
