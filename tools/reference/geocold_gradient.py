@@ -3,9 +3,14 @@
 
     python tools/reference/geocold_gradient.py --config tests/data/refs/cornell-original.json \\
         --material leftWall --res 64x64 --spp 256 --passes 8 --max-depth 6 [--device cpu]
+    python tools/reference/geocold_gradient.py --config tests/data/scenes/textured-plane/gradient.json \\
+        --material plane --texels --res 64x64 --spp 64 --passes 16 --max-depth 4 --device cpu
 
 Runs in an environment with the geocold package installed (not Mitsuba's); prints one JSON
-object with the same fields as prb_gradient.py.
+object with the same fields as prb_gradient.py. With --texels, the gradient with respect to
+the texels of a texture, linear, without alpha (flattened (h, w, 3), rows top to bottom, and
+"shape"): the scene's only texture, or --texture I (geocold's Python API does not say which
+texture a material uses).
 """
 
 import argparse
@@ -17,6 +22,20 @@ import numpy as np
 import geocold as gc
 
 
+def texels_name(scene, index) -> str:
+    """The parameter name of texture `index`, or of the scene's only differentiable texture."""
+    names = [n for n in scene.params.differentiable() if n.startswith("textures/")]
+    if index is not None:
+        name = f"textures/{index}/texels"
+        if name not in names:
+            raise SystemExit(f"error: {name} is not differentiable (textures: {', '.join(names) or 'none'})")
+        return name
+    if len(names) != 1:
+        raise SystemExit(f"error: the scene has {len(names)} differentiable textures ({', '.join(names)}); "
+                         "give --texture")
+    return names[0]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--config", required=True)
@@ -26,6 +45,9 @@ def main():
     ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--max-depth", type=int, default=None)
     ap.add_argument("--device", default="any")
+    ap.add_argument("--texels", action="store_true", help="differentiate a texture's texels instead of the base colour")
+    ap.add_argument("--texture", type=int, default=None,
+                    help="with --texels: the texture's index (default: the only one)")
     args = ap.parse_args()
 
     with open(args.config) as f:
@@ -37,13 +59,21 @@ def main():
                     look_from=cam["look_from"], look_at=cam["look_at"], up=cam.get("up", (0, 1, 0)), fov=cam["fov"])
     r = gc.Renderer(scene, device=args.device, res=(width, height), max_depth=max_depth, seed=0,
                     env=tuple(cfg["env"]) if cfg.get("env") else 0.0)
-    name = f"materials/{args.material}/base_color"
+    name = texels_name(scene, args.texture) if args.texels else f"materials/{args.material}/base_color"
     loss_grad = np.full((height, width, 3), 1.0 / (width * height * 3), np.float32)
     g = np.array([r.backward(loss_grad, [name], spp=args.spp, seed=10_000 + p)[name] for p in range(args.passes)],
                  dtype=np.float64)
-    print(json.dumps({"renderer": f"geocold {gc.__version__} ({r.info['device']})", "parameters": [name],
-                      "gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / np.sqrt(len(g))).tolist(),
-                      "res": [width, height], "spp": args.spp, "passes": args.passes, "max_depth": max_depth}))
+    out = {"renderer": f"geocold {gc.__version__} ({r.info['device']})", "parameters": [name]}
+    if args.texels:
+        # (passes, h, w, 4) -> (passes, h*w*3): alpha's gradient is 0 and Mitsuba's texture has none.
+        out["shape"] = [g.shape[1], g.shape[2], 3]
+        g = g[..., :3].reshape(len(g), -1)
+    out.update({"gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / np.sqrt(len(g))).tolist(),
+                # As prb_gradient.py: the sum over components, with its pass-to-pass error.
+                "total": float(g.sum(axis=1).mean()),
+                "total_std_error": float(g.sum(axis=1).std(ddof=1) / np.sqrt(len(g))),
+                "res": [width, height], "spp": args.spp, "passes": args.passes, "max_depth": max_depth})
+    print(json.dumps(out))
 
 
 if __name__ == "__main__":

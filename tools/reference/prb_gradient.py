@@ -3,10 +3,17 @@ reflectance: the independent yardstick for geocold-cl's Renderer.backward (docs/
 
     .venv/bin/python tools/reference/prb_gradient.py --config tests/data/refs/cornell-original.json \\
         --material leftWall --res 64x64 --spp 64 --passes 8 --max-depth 6
+    .venv/bin/python tools/reference/prb_gradient.py --config tests/data/scenes/textured-plane/gradient.json \\
+        --material plane --texels --res 64x64 --spp 64 --passes 16 --max-depth 4
 
 Prints one JSON object: the gradient of mean(image) (over pixels and RGB) with respect to
 the material's RGB reflectance, averaged over --passes independent seeds, with its standard
 error. Lambert materials only (illum 0-2): the reflectance is a diffuse BSDF's.
+
+With --texels, the gradient with respect to the linear texels of the material's map_Kd (Kd
+must be 1, so that the texture is the reflectance): "gradient" and "std_error" are then
+flattened (h, w, 3) arrays, rows top to bottom as in the image file, and "shape" is [h, w, 3].
+compare_gradients.py compares two such files.
 """
 
 from __future__ import annotations
@@ -21,6 +28,31 @@ import numpy as np
 from make_reference import _res, load_groups, resolve_settings
 
 
+def _float_storage(bsdf):
+    """The BSDF dict with its image textures stored as the variant's floats. Mitsuba 3.9 keeps
+    an 8-bit image as uint8 texels (sRGB decoded at each lookup), a tensor without gradients;
+    format "variant" decodes it to linear floats once, the values geocold differentiates."""
+    if isinstance(bsdf, dict):
+        if bsdf.get("type") == "bitmap" and "filename" in bsdf:
+            bsdf = dict(bsdf, format="variant")
+        return {k: _float_storage(v) for k, v in bsdf.items()}
+    return bsdf
+
+
+def parameter_keys(params, groups, material: str, texels: bool) -> list:
+    """The Mitsuba parameters of the material's reflectance (or its texels), one per group:
+    build_scene names the meshes mesh_<i> and gives each its own BSDF, so their gradients add."""
+    leaf = "data" if texels else "value"
+    mine = [(i, g) for i, g in enumerate(groups) if g.material.name == material]
+    keys = [f"mesh_{i:03d}.bsdf.brdf_0.reflectance.{leaf}" for i, _ in mine]
+    # With Kd != 1 the bitmap holds Kd times the texture (mitsuba_scene.py bakes it), not the texels.
+    baked = texels and any(not np.allclose(g.material.kd, 1.0) for _, g in mine)
+    if not keys or baked or any(k not in params.keys() for k in keys):
+        what = "diffuse texture with Kd 1" if texels else "constant diffuse reflectance"
+        raise SystemExit(f"error: material {material!r} has no {what} (Lambert materials only)")
+    return keys
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--config", required=True, help="a reference JSON (scene, camera, max_depth)")
@@ -30,13 +62,19 @@ def main(argv=None):
     ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--max-depth", type=int, default=None)
     ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--texels", action="store_true", help="differentiate the material's map_Kd texels instead")
     args = ap.parse_args(argv)
 
     import drjit as dr
     import mitsuba as mi
 
     mi.set_variant(args.variant)
+    import mitsuba_scene
     from mitsuba_scene import build_scene
+
+    if args.texels:
+        # build_scene reaches the materials through this module attribute.
+        mitsuba_scene.material_bsdf = lambda m, bsdf_of=mitsuba_scene.material_bsdf: _float_storage(bsdf_of(m))
 
     settings = argparse.Namespace(scene=None, config=args.config, look_from=None, look_at=None, up=None, fov=None,
                                   res=args.res, spp=args.spp * 2, max_depth=args.max_depth, env=None, pass_spp=args.spp,
@@ -46,11 +84,8 @@ def main(argv=None):
         groups = load_groups(scene_path, tmp)
         scene = build_scene(groups, cam, max_depth, env, 0, integrator="prb")
     params = mi.traverse(scene)
-    # The material's groups (build_scene names their meshes mesh_<i>): one parameter for us,
-    # one BSDF each for Mitsuba, so their gradients add.
-    keys = [f"mesh_{i:03d}.bsdf.brdf_0.reflectance.value" for i, g in enumerate(groups) if g.material.name == args.material]
-    if not keys or any(k not in params.keys() for k in keys):
-        raise SystemExit(f"error: material {args.material!r} has no diffuse reflectance (Lambert materials only)")
+    keys = parameter_keys(params, groups, args.material, args.texels)
+    shape = list(params[keys[0]].shape) if args.texels else None
     grads = []
     for p in range(args.passes):
         for k in keys:
@@ -64,9 +99,15 @@ def main(argv=None):
         print(f"\rpass {p + 1}/{args.passes}", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
     g = np.array(grads)
-    print(json.dumps({"renderer": f"Mitsuba {mi.__version__} {args.variant} prb", "parameters": keys,
-                      "gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / np.sqrt(len(g))).tolist(),
-                      "res": cam["res"], "spp": args.spp, "passes": args.passes, "max_depth": max_depth}))
+    out = {"renderer": f"Mitsuba {mi.__version__} {args.variant} prb", "parameters": keys,
+           "gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / np.sqrt(len(g))).tolist(),
+           # The sum over components, pass by pass: its standard error, unlike one from the
+           # components' errors, holds their correlations (compare_gradients.py's bias test).
+           "total": float(g.sum(axis=1).mean()), "total_std_error": float(g.sum(axis=1).std(ddof=1) / np.sqrt(len(g))),
+           "res": cam["res"], "spp": args.spp, "passes": args.passes, "max_depth": max_depth}
+    if shape is not None:
+        out["shape"] = shape
+    print(json.dumps(out))
 
 
 if __name__ == "__main__":
