@@ -20,9 +20,9 @@ namespace {
 constexpr double k_contributions_per_vertex = 4.0;
 
 // The fewest paths (pixels x spp) for which PrimalPass::Auto traces the radiance in a wavefront
-// pass: below, the pass's launches cost more than they save (on an H100, 128x128 x 4 took
-// 0.0016-0.0020 s an iteration that way against 0.0013-0.0015 s in the adjoint kernel, and
-// 512x512 x 16 0.042-0.046 s against 0.045-0.051 s; docs/performance.md, "Gradients").
+// pass: below, the pass's launches cost more than they save (on an H200, one parameter,
+// 128x128 x 4 took 0.0018 s an iteration that way against 0.0015 s in the adjoint kernel, and
+// 512x512 x 16 0.033 s against 0.046-0.050 s; docs/performance.md, "Gradients").
 constexpr std::uint64_t k_wavefront_primal_paths = std::uint64_t(1) << 20;
 
 // Slots hold 64-bit signed sums; the scale keeps every possible sum within 2^62.
