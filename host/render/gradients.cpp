@@ -149,13 +149,10 @@ void PathAdjoint::build(const Renderer& renderer)
     m_kernel = m_program->kernel("path_adjoint");
     m_features = scene.features;
     m_renderer_wavefront = !path_megakernel_for(m_context.device(), renderer.setup().tuning.path_kernel);
+    // Made by the first backward pass that wants it, sized for its sample count (the renderer's
+    // settings.spp may be far more, and its path slots take device memory); its program is the
+    // renderer's wavefront.cl, built already and taken from the program cache.
     m_primal.reset();
-    // Built with the adjoint, sized for the renderer's sample count (a backward pass of another
-    // count remakes its buffers; the program comes from the cache then).
-    const RenderSettings& settings = renderer.settings();
-    const std::uint32_t spp = std::max(settings.spp, 1u);
-    if (wavefront_primal(std::uint64_t(settings.width) * settings.height * spp))
-        primal_integrator(renderer, spp);
     if (!m_no_primal) m_no_primal = cl::Buffer<dev::GcPathState>::create(m_context, 1, CL_MEM_READ_ONLY, "no primal paths");
 }
 
