@@ -55,9 +55,9 @@ typedef struct {
     uint view_count;         /* view_slots' length */
 } GcGradTarget;
 
-/* Adds v to the 64-bit slot i of `slots`, exactly and in any order. Without 64-bit atomics: little-endian, the low word first; both words wrap modulo
- * 2^32 and the carry out of the low word goes into the high one, so the two words end as the
- * 64-bit sum. */
+/* Adds v to the 64-bit slot i of `slots`, exactly and in any order. Without 64-bit atomics:
+ * little-endian, the low word first; both words wrap modulo 2^32 and the carry out of the low
+ * word goes into the high one, so the two words end as the 64-bit sum. */
 #if defined(GC_GRAD_INT64_ATOMICS)
 #define GC_GRAD_ATOMIC_ADD(slots, i, v) atom_add(&(slots)[i], (ulong)(v))
 #else
