@@ -187,9 +187,21 @@ def material_bsdf(material) -> dict:
     return {"type": "twosided", "bsdf": bsdf}
 
 
-def group_mesh(name: str, group: TriangleGroup) -> mi.Mesh:
+def float_texture_storage(bsdf):
+    """The BSDF dict with its image textures stored as the variant's floats. Mitsuba 3.9 keeps
+    an 8-bit image as uint8 texels (sRGB decoded at each lookup), a tensor without gradients;
+    format "variant" decodes it to linear floats once, the values geocold differentiates."""
+    if isinstance(bsdf, dict):
+        if bsdf.get("type") == "bitmap" and "filename" in bsdf:
+            bsdf = dict(bsdf, format="variant")
+        return {k: float_texture_storage(v) for k, v in bsdf.items()}
+    return bsdf
+
+
+def group_mesh(name: str, group: TriangleGroup, float_textures: bool = False) -> mi.Mesh:
     props = mi.Properties()
-    props["bsdf"] = mi.load_dict(material_bsdf(group.material))
+    bsdf = material_bsdf(group.material)
+    props["bsdf"] = mi.load_dict(float_texture_storage(bsdf) if float_textures else bsdf)
     if absorbs(group.material):
         # An RGB value here is read as a reflectance (at most 1): the largest coefficient goes
         # into the medium's scale.
@@ -227,7 +239,8 @@ def integrator_for(groups, integrator: str = "path") -> str:
     return integrator
 
 
-def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path") -> mi.Scene:
+def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integrator: str = "path",
+                float_textures: bool = False) -> mi.Scene:
     width, height = camera["res"]
     integrator = integrator_for(groups, integrator)
     scene = {
@@ -257,5 +270,5 @@ def build_scene(groups, camera: dict, max_depth: int, env, seed: int = 0, integr
     if env is not None and max(env) > 0:
         scene["environment"] = {"type": "constant", "radiance": _rgb(env)}
     for i, group in enumerate(groups):
-        scene[f"mesh_{i:03d}"] = group_mesh(f"mesh_{i:03d}_{group.material.name}", group)
+        scene[f"mesh_{i:03d}"] = group_mesh(f"mesh_{i:03d}_{group.material.name}", group, float_textures)
     return mi.load_dict(scene)

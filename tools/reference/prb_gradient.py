@@ -28,17 +28,6 @@ import numpy as np
 from make_reference import _res, load_groups, resolve_settings
 
 
-def _float_storage(bsdf):
-    """The BSDF dict with its image textures stored as the variant's floats. Mitsuba 3.9 keeps
-    an 8-bit image as uint8 texels (sRGB decoded at each lookup), a tensor without gradients;
-    format "variant" decodes it to linear floats once, the values geocold differentiates."""
-    if isinstance(bsdf, dict):
-        if bsdf.get("type") == "bitmap" and "filename" in bsdf:
-            bsdf = dict(bsdf, format="variant")
-        return {k: _float_storage(v) for k, v in bsdf.items()}
-    return bsdf
-
-
 def parameter_keys(params, groups, material: str, texels: bool) -> list:
     """The Mitsuba parameters of the material's reflectance (or its texels), one per group:
     build_scene names the meshes mesh_<i> and gives each its own BSDF, so their gradients add."""
@@ -69,12 +58,7 @@ def main(argv=None):
     import mitsuba as mi
 
     mi.set_variant(args.variant)
-    import mitsuba_scene
     from mitsuba_scene import build_scene
-
-    if args.texels:
-        # build_scene reaches the materials through this module attribute.
-        mitsuba_scene.material_bsdf = lambda m, bsdf_of=mitsuba_scene.material_bsdf: _float_storage(bsdf_of(m))
 
     settings = argparse.Namespace(scene=None, config=args.config, look_from=None, look_at=None, up=None, fov=None,
                                   res=args.res, spp=args.spp * 2, max_depth=args.max_depth, env=None, pass_spp=args.spp,
@@ -82,7 +66,7 @@ def main(argv=None):
     scene_path, cam, _, max_depth, env = resolve_settings(settings)
     with tempfile.TemporaryDirectory() as tmp:
         groups = load_groups(scene_path, tmp)
-        scene = build_scene(groups, cam, max_depth, env, 0, integrator="prb")
+        scene = build_scene(groups, cam, max_depth, env, 0, integrator="prb", float_textures=args.texels)
     params = mi.traverse(scene)
     keys = parameter_keys(params, groups, args.material, args.texels)
     shape = list(params[keys[0]].shape) if args.texels else None
