@@ -28,6 +28,16 @@ import sys
 import numpy as np
 
 
+def pass_statistics(g: np.ndarray) -> dict:
+    """The fields both gradient scripts print for passes x components `g`: each component's
+    mean and standard error, and the sum over components with its pass-to-pass error (which,
+    unlike one from the components' errors, holds their correlations: the bias test below)."""
+    total = g.sum(axis=1)
+    root_n = np.sqrt(len(g))
+    return {"gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / root_n).tolist(),
+            "total": float(total.mean()), "total_std_error": float(total.std(ddof=1) / root_n)}
+
+
 def load(path: str):
     with open(path) as f:
         d = json.load(f)

@@ -20,6 +20,7 @@ import os
 import numpy as np
 
 import geocold as gc
+from compare_gradients import pass_statistics
 
 
 def texels_name(scene, index) -> str:
@@ -68,11 +69,8 @@ def main():
         # (passes, h, w, 4) -> (passes, h*w*3): alpha's gradient is 0 and Mitsuba's texture has none.
         out["shape"] = [g.shape[1], g.shape[2], 3]
         g = g[..., :3].reshape(len(g), -1)
-    out.update({"gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / np.sqrt(len(g))).tolist(),
-                # As prb_gradient.py: the sum over components, with its pass-to-pass error.
-                "total": float(g.sum(axis=1).mean()),
-                "total_std_error": float(g.sum(axis=1).std(ddof=1) / np.sqrt(len(g))),
-                "res": [width, height], "spp": args.spp, "passes": args.passes, "max_depth": max_depth})
+    out.update({**pass_statistics(g), "res": [width, height], "spp": args.spp, "passes": args.passes,
+                "max_depth": max_depth})
     print(json.dumps(out))
 
 

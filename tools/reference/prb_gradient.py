@@ -25,6 +25,7 @@ import tempfile
 
 import numpy as np
 
+from compare_gradients import pass_statistics
 from make_reference import _res, load_groups, resolve_settings
 
 
@@ -83,11 +84,7 @@ def main(argv=None):
         print(f"\rpass {p + 1}/{args.passes}", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
     g = np.array(grads)
-    out = {"renderer": f"Mitsuba {mi.__version__} {args.variant} prb", "parameters": keys,
-           "gradient": g.mean(axis=0).tolist(), "std_error": (g.std(axis=0, ddof=1) / np.sqrt(len(g))).tolist(),
-           # The sum over components, pass by pass: its standard error, unlike one from the
-           # components' errors, holds their correlations (compare_gradients.py's bias test).
-           "total": float(g.sum(axis=1).mean()), "total_std_error": float(g.sum(axis=1).std(ddof=1) / np.sqrt(len(g))),
+    out = {"renderer": f"Mitsuba {mi.__version__} {args.variant} prb", "parameters": keys, **pass_statistics(g),
            "res": cam["res"], "spp": args.spp, "passes": args.passes, "max_depth": max_depth}
     if shape is not None:
         out["shape"] = shape
