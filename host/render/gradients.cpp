@@ -20,9 +20,8 @@ namespace {
 constexpr double k_contributions_per_vertex = 4.0;
 
 // The fewest paths (pixels x spp) for which PrimalPass::Auto traces the radiance in a wavefront
-// pass: below, the pass's launches cost more than they save (on an H200, one parameter,
-// 128x128 x 4 took 0.0018 s an iteration that way against 0.0015 s in the adjoint kernel, and
-// 512x512 x 16 0.033 s against 0.046-0.050 s; docs/performance.md, "Gradients").
+// pass: a smaller pass leaves the wavefront's per-bounce launches too little work to pay for
+// themselves (measured on GPUs at both sides of it: docs/performance.md, "Gradients").
 constexpr std::uint64_t k_wavefront_primal_paths = std::uint64_t(1) << 20;
 
 // Slots hold 64-bit signed sums; the scale keeps every possible sum within 2^62.
