@@ -13,20 +13,9 @@
 namespace gc::vk {
 namespace {
 
-// The reference's shaders leave KHR_materials_sheen out (host/vk/CMakeLists.txt says why).
-void refuse_sheen(const Scene& scene)
-{
-    for (const Material& m : scene.materials)
-        if (m.type == MaterialType::Pbr && m.layers.sheen_on)
-            throw UsageError(scene.name_for_messages() + ": material '" + m.name +
-                             "' has KHR_materials_sheen, which the Vulkan reference leaves out (lavapipe takes "
-                             "minutes to build its path pipeline with it); cross-check a scene without sheen");
-}
-
 SceneBuffers upload_for_tracing(const Context& context, const Scene& scene, const FlatBvh& bvh, const Camera& camera,
                                 const RenderSettings& settings)
 {
-    refuse_sheen(scene);
     const EnvironmentMap environment = load_environment_map(settings);
     return SceneBuffers::upload(context, scene, &bvh, camera, settings, &environment);
 }
@@ -36,7 +25,6 @@ SceneBuffers upload_for_tracing(const Context& context, const Scene& scene, cons
 SceneBuffers upload_for_tracing(const Context& context, const InstancedScene& scene, const InstancedBvh& bvh,
                                 const Camera& camera, const RenderSettings& settings)
 {
-    refuse_sheen(scene.meshes);
     FlatBvh meshes;
     meshes.nodes = bvh.nodes;
     meshes.triangles = bvh.tris;

@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gc_sheen_table.h"
 #include "gc_srgb_table.h"
 #include "host/render/scene_convert.h"
 #include "kernels/vk/bindings.h"
@@ -38,6 +39,7 @@ SceneBuffers SceneBuffers::upload(const Context& context, const Scene& scene, co
         Buffer::with_data(context, emitters, kStorage, "emitters"),
         Buffer::with_data(context, positions, kStorage, "vertex positions"),
         Buffer::with_data(context, std::span<const float>(dev::gc_srgb_to_linear_table), kStorage, "sRGB table"),
+        Buffer::with_data(context, std::span<const float>(dev::gc_sheen_albedo_table), kStorage, "sheen albedo table"),
         Buffer::with_data(context, make_point_lights(scene), kStorage, "point lights"),
         Buffer::with_data(context, env.pixels, kStorage, "environment map"),
         Buffer::with_data(context, env.marginal_cdf, kStorage, "environment marginal cdf"),
@@ -61,6 +63,7 @@ void SceneBuffers::bind(StorageBufferSet& set) const
     set.bind(GC_VK_BINDING_EMITTERS, emitters);
     set.bind(GC_VK_BINDING_POSITIONS, positions);
     set.bind(GC_VK_BINDING_SRGB, srgb_table);
+    set.bind(GC_VK_BINDING_SHEEN, sheen_table);
     set.bind(GC_VK_BINDING_POINT_LIGHTS, point_lights);
     set.bind(GC_VK_BINDING_ENV_PIXELS, env_pixels);
     set.bind(GC_VK_BINDING_ENV_MARGINAL, env_marginal);

@@ -27,6 +27,7 @@ struct SceneBuffers {
     Buffer emitters;
     Buffer positions;  // three vec4 per scene triangle, for the raster pass
     Buffer srgb_table; // gc_srgb_to_linear_table, read by gc_texture.h in GLSL
+    Buffer sheen_table; // gc_sheen_albedo_table, read by gc_bsdf.h in GLSL
     Buffer point_lights;
     Buffer env_pixels;      // the environment map and its sampling cdfs (host/render/environment.h)
     Buffer env_marginal;

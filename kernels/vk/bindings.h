@@ -20,12 +20,13 @@
 #define GC_VK_BINDING_ENV_PIXELS 12      /* vec4[] lat-long environment map, row 0 at the zenith */
 #define GC_VK_BINDING_ENV_MARGINAL 13    /* float[] its rows' cdf (environment.h) */
 #define GC_VK_BINDING_ENV_CONDITIONAL 14 /* float[] each row's texels' cdf */
-#define GC_VK_BINDING_COUNT 15
+#define GC_VK_BINDING_SHEEN 15           /* float[]: gc_sheen_albedo_table (gc_sheen_table.h) */
+#define GC_VK_BINDING_COUNT 16
 /* Instanced passes (the shaders built with GC_SCENE_INSTANCED) add the two-level BVH's top
  * level and instances (gc_instance.h); NODES and TRIS then hold every mesh's bottom-level tree. */
-#define GC_VK_BINDING_TLAS 15            /* GcBvhNode[] over the instances */
-#define GC_VK_BINDING_INSTANCES 16       /* GcInstance[] in the top level's leaf order */
-#define GC_VK_INSTANCED_BINDING_COUNT 17
+#define GC_VK_BINDING_TLAS 16            /* GcBvhNode[] over the instances */
+#define GC_VK_BINDING_INSTANCES 17       /* GcInstance[] in the top level's leaf order */
+#define GC_VK_INSTANCED_BINDING_COUNT 18
 
 #define GC_VK_LOCAL_SIZE 64 /* compute work-group size */
 

@@ -33,11 +33,15 @@ layout(std430, set = 0, binding = GC_VK_BINDING_FILM) buffer FilmBuffer { vec4 f
 #endif
 layout(std430, set = 0, binding = GC_VK_BINDING_POSITIONS) readonly buffer PositionBuffer { vec4 positions[]; };
 
-/* The sRGB decoding table comes from a buffer the host fills from gc_srgb_table.h (the same
- * numbers), not from the header's GLSL branch: a 256-entry constant array indexed at run time
- * makes lavapipe's shader compiler take seconds to minutes. The guard keeps the header out. */
+/* The sRGB decoding and sheen albedo tables come from buffers the host fills from
+ * gc_srgb_table.h and gc_sheen_table.h (the same numbers), not from the headers' GLSL arrays:
+ * glslang gives every function that indexes a constant array at run time a private copy of it,
+ * the inliner multiplies those copies (the sheen table's 512 floats became 68 copies in the
+ * path shader), and lavapipe's compiler then takes minutes. The macros keep the arrays out. */
 #define GC_SRGB_TABLE_H 1
 layout(std430, set = 0, binding = GC_VK_BINDING_SRGB) readonly buffer SrgbBuffer { float gc_srgb_to_linear_table[256]; };
+#define GC_SHEEN_TABLE_IN_BUFFER 1
+layout(std430, set = 0, binding = GC_VK_BINDING_SHEEN) readonly buffer SheenBuffer { float gc_sheen_albedo_table[]; };
 
 /* Element accessors of the shared headers over the SSBOs above. The parameter lists are
  * dummies (GLSL has no pointers: every access is a global), defined with the OpenCL ones from

@@ -71,6 +71,9 @@ def main():
 #define GC_SHEEN_TABLE_COS %d
 #define GC_SHEEN_TABLE_ROUGH %d
 
+/* The Vulkan shaders read the table from a buffer the host fills from this one
+ * (kernels/vk/scene_bindings.glsl says why) and define GC_SHEEN_TABLE_IN_BUFFER. */
+#ifndef GC_SHEEN_TABLE_IN_BUFFER
 GC_FLOAT_TABLE_BEGIN(gc_sheen_albedo_table, %d)""" % (N_ROUGH - 1, N_COS - 1, N_COS, N_ROUGH, N_COS * N_ROUGH))
     flat = [v for row in rows for v in row]
     lines = []
@@ -78,6 +81,7 @@ GC_FLOAT_TABLE_BEGIN(gc_sheen_albedo_table, %d)""" % (N_ROUGH - 1, N_COS - 1, N_
         lines.append("    " + ", ".join("%.9ef" % np.float32(v) for v in flat[k:k + 8]))
     print(",\n".join(lines))
     print("""GC_FLOAT_TABLE_END
+#endif
 
 #endif /* GC_SHEEN_TABLE_H */""")
 
