@@ -244,7 +244,8 @@ ExitCode run_render(const Options& options)
     for (const DeviceReport& d : outcome.devices)
         log_verbose("device " + d.name + ": " + std::to_string(d.chunks) + " chunks (" + std::to_string(d.backups) +
                     " backups), " + std::to_string(d.samples) + " spp rendered, set up in " + fixed(d.setup_seconds, 3) +
-                    " s, busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
+                    " s, " + (d.probe_seconds > 0.0 ? "probe " + fixed(d.probe_seconds, 3) + " s, " : "") + "busy " +
+                    fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
                     (d.failure.empty() ? "" : ", failed: " + d.failure) +
                     (d.left_slow ? ", left the frame: under a tenth of the other devices' rate" : ""));
     log_verbose("frame: " + fixed(outcome.seconds, 3) + " s rendering (every device set up), " +

@@ -23,6 +23,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// About how many pixels a CPU device's probe renders (Renderer::estimate_seconds_per_sample):
+// a thirty-second of them at 1024x1024, every one up to about 181x181.
+constexpr std::uint32_t kProbePixels = 1u << 15;
+
 double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
 // The chunk numbers that end each round: one per check point, then the plan's end.
@@ -296,6 +300,7 @@ private:
 
     void render_until_done(Renderer& renderer, ChunkHandoff& handoff)
     {
+        if (probes_first() && !stays_after_probe(renderer)) return;
         while (const std::optional<Claim> claim = next_claim()) {
             const auto chunk_start = Clock::now();
             m_shared.chunk_started[m_me] = seconds_between(m_start, chunk_start);
@@ -306,6 +311,46 @@ private:
             finish_chunk(renderer, handoff, *claim, end);
             if (end.stopped) return;
         }
+    }
+
+    // A CPU device beside others learns its rate from a probe of a few pixels before it takes
+    // a chunk: its threads share the host's cores with those that drive the other devices, and
+    // a probe of whole passes (three samples of every pixel) held every core long enough to
+    // delay a GPU's last chunk (docs/performance.md, "Several devices on one frame").
+    bool probes_first()
+    {
+        if (m_device.is_gpu || m_job.settings.integrator != IntegratorKind::Path) return false;
+        std::lock_guard lock(m_shared.mutex);
+        return m_shared.live > 1;
+    }
+
+    // Probes this device's rate, then waits, holding no chunk, until another device's rate is
+    // known (or no other is left, or the frame is over), and leaves the frame if it would add
+    // too little (adds_too_little). Whether it stays.
+    bool stays_after_probe(Renderer& renderer)
+    {
+        const auto probe_start = Clock::now();
+        const double seconds_per_sample = renderer.estimate_seconds_per_sample(kProbePixels);
+        m_report.probe_seconds = seconds_between(probe_start, Clock::now());
+        if (!(seconds_per_sample > 0.0)) return true;
+        m_shared.pass_rate[m_me] = 1.0 / seconds_per_sample;
+        std::unique_lock lock(m_shared.mutex);
+        m_shared.changed.notify_all();  // a CPU device waiting on this one's rate
+        while (!m_shared.stop && m_shared.live > 1 && !(m_shared.others_rate(m_me) > 0.0) && !plan_done())
+            m_shared.changed.wait_for(lock, std::chrono::milliseconds(5));
+        if (!adds_too_little(m_shared.pass_rate[m_me].load(), m_shared.others_rate(m_me))) return true;
+        m_report.left_slow = true;
+        leave_frame(m_shared, m_me, m_mine);
+        return false;
+    }
+
+    // Whether every chunk is delivered and none will be queued (under shared.mutex).
+    bool plan_done() const
+    {
+        if (!m_shared.running.empty() || !m_shared.todo.empty() || m_shared.round_pending()) return false;
+        for (const auto& r : m_shared.reserved)
+            if (!r.empty()) return false;
+        return true;
     }
 
     // The next chunk this device renders, or none once the plan is done or the frame stops:
@@ -347,11 +392,7 @@ private:
                 claim->pixels = m_shared.pixels;
                 return claim;
             }
-            if (m_shared.running.empty() && m_shared.todo.empty() && !m_shared.round_pending()) {
-                bool any_reserved = false;
-                for (const auto& r : m_shared.reserved) any_reserved = any_reserved || !r.empty();
-                if (!any_reserved) return std::nullopt;  // the plan is done
-            }
+            if (plan_done()) return std::nullopt;
             m_shared.changed.wait_for(lock, std::chrono::milliseconds(20));
         }
     }

@@ -19,7 +19,9 @@
 //
 // A device that fails (its driver, its memory) drops out with a warning; its chunks go back to
 // the queue. The frame fails only when no device is left. A device far slower than the others
-// leaves the frame once its second pass shows it (adds_too_little), its chunk going back to the queue.
+// leaves the frame once its second pass shows it (adds_too_little), its chunk going back to the
+// queue; a CPU device beside others probes its rate on a few pixels first and may leave before
+// it takes a chunk.
 #pragma once
 
 #include <cstdint>
@@ -57,6 +59,7 @@ struct DeviceReport {
     double setup_seconds = 0;   // upload and kernel build
     double ready_at = 0;        // seconds from the call to the end of its set-up (on_device_ready's return)
     double busy_seconds = 0;    // rendering
+    double probe_seconds = 0;   // a CPU device's probe of its rate before its first chunk
     double finished_at = 0;     // seconds from the frame's start to the device's last chunk
     std::string failure;        // why it dropped out; empty if it did not
     bool left_slow = false;     // left the frame as too slow to help (adds_too_little)

@@ -180,6 +180,34 @@ std::uint32_t Renderer::render_samples(std::uint32_t max_samples)
     return samples;
 }
 
+double Renderer::estimate_seconds_per_sample(std::uint32_t probe_pixels)
+{
+    std::vector<std::uint32_t> selected = m_pixel_list;
+    const bool listed = m_pixels_listed;
+    const std::uint32_t pixels = listed ? static_cast<std::uint32_t>(selected.size()) : m_params.width * m_params.height;
+    if (pixels == 0) return 0.0;
+    const std::uint32_t stride = std::max(1u, pixels / std::max(1u, probe_pixels));
+    std::vector<std::uint32_t> probe;
+    probe.reserve(pixels / stride + 1);
+    for (std::uint32_t i = 0; i < pixels; i += stride) probe.push_back(listed ? selected[i] : i);
+    const std::uint32_t next = m_next_sample;
+    const PassPlanner plan = m_planner;
+    select_pixels(probe);
+    m_planner = PassPlanner(1);
+    render_samples(1);
+    m_planner = PassPlanner(kProbeSamples);
+    const auto start = std::chrono::steady_clock::now();
+    render_samples(kProbeSamples);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m_planner = plan;
+    m_next_sample = next;
+    if (listed)
+        select_pixels(std::move(selected));
+    else
+        select_all_pixels();
+    return seconds / kProbeSamples * (static_cast<double>(pixels) / static_cast<double>(probe.size()));
+}
+
 FilmSums Renderer::sums(bool with_squares) const
 {
     FilmSums out;

@@ -75,8 +75,10 @@ TEST_F(MultiDeviceTest, OneChunkIsThePlainRender)
 {
     Renderer renderer(*context, prepared.scene, prepared.bvh, prepared.camera, small_path());
     renderer.render(0, 10);
-    const FilmSums one = frame({context->device()}, ChunkPlan::for_range(0, 10, 16));
+    FrameOutcome outcome;
+    const FilmSums one = frame({context->device()}, ChunkPlan::for_range(0, 10, 16), &outcome);
     EXPECT_TRUE(same_bits(one, renderer.sums()));
+    EXPECT_EQ(outcome.devices.at(0).probe_seconds, 0.0) << "a device alone has no one to compare its rate with";
     EXPECT_EQ(mean_film(one), renderer.film());
 }
 
@@ -105,6 +107,38 @@ TEST_F(MultiDeviceTest, SplitRangesAddUpToTheFrame)
     EXPECT_FALSE(same_bits(renderer.sums(), whole));
 }
 
+// A CPU device beside others probes its rate (Renderer::estimate_seconds_per_sample) before
+// its first chunk: the probe leaves the pixels picked, the pass plan and the next sample as
+// they were, so the chunk after it has the bits it has without one.
+TEST_F(MultiDeviceTest, ARateProbeLeavesTheRendererAsItWas)
+{
+    Renderer plain(*context, prepared.scene, prepared.bvh, prepared.camera, small_path());
+    Renderer probed(*context, prepared.scene, prepared.bvh, prepared.camera, small_path());
+    const std::vector<std::uint32_t> picked = {1, 30, 31, 200, 479};
+    for (Renderer* r : {&plain, &probed}) {
+        r->select_pixels(picked);
+        r->clear(7);
+    }
+    const double seconds = probed.estimate_seconds_per_sample(2);
+    std::printf("  probe: %.3g s per sample of %zu pixels\n", seconds, picked.size());
+    EXPECT_GT(seconds, 0.0);
+    EXPECT_EQ(probed.next_sample(), 7u);
+    EXPECT_EQ(probed.samples_done(), 0u);
+    for (Renderer* r : {&plain, &probed}) r->render_samples(10);  // samples_per_pass 3: one pass of 3
+    EXPECT_EQ(probed.samples_done(), 3u) << "the pass plan changed";
+    EXPECT_TRUE(same_bits(probed.sums(), plain.sums()));
+
+    for (Renderer* r : {&plain, &probed}) r->select_all_pixels();
+    EXPECT_GT(probed.estimate_seconds_per_sample(1u << 16), 0.0);
+    for (Renderer* r : {&plain, &probed}) r->render(0, 6);
+    EXPECT_TRUE(same_bits(probed.sums(), plain.sums()));
+
+    RenderSettings whitted = small_path();
+    whitted.integrator = IntegratorKind::Whitted;
+    Renderer other(*context, prepared.scene, prepared.bvh, prepared.camera, whitted);
+    EXPECT_THROW(other.estimate_seconds_per_sample(16), UsageError);
+}
+
 TEST_F(MultiDeviceTest, SeveralDevicesOfOneKindGiveTheBitsOfOne)
 {
     const ChunkPlan plan = ChunkPlan::for_range(0, 45, 4);
@@ -114,10 +148,16 @@ TEST_F(MultiDeviceTest, SeveralDevicesOfOneKindGiveTheBitsOfOne)
     EXPECT_TRUE(same_bits(one, two));
     std::uint32_t chunks = 0;
     for (const DeviceReport& d : outcome.devices) {
-        std::printf("  %s: %u chunks (%u backups), %llu spp, busy %.3f s\n", d.name.c_str(), d.chunks, d.backups,
-                    static_cast<unsigned long long>(d.samples), d.busy_seconds);
+        std::printf("  %s: %u chunks (%u backups), %llu spp, probe %.3f s, busy %.3f s\n", d.name.c_str(), d.chunks,
+                    d.backups, static_cast<unsigned long long>(d.samples), d.probe_seconds, d.busy_seconds);
         chunks += d.chunks;
         EXPECT_TRUE(d.failure.empty()) << d.failure;
+        // Beside another device a CPU device probes its rate first; devices of one kind add
+        // the same, so none leaves.
+        if (!d.is_gpu) {
+            EXPECT_GT(d.probe_seconds, 0.0);
+        }
+        EXPECT_FALSE(d.left_slow);
     }
     EXPECT_EQ(chunks, plan.chunk_count());
     const std::vector<cl::DeviceInfo> three = {same_kind[0], same_kind[1], same_kind[0]};
