@@ -315,8 +315,8 @@ private:
 
     // A CPU device beside others learns its rate from a probe of a few pixels before it takes
     // a chunk: its threads share the host's cores with those that drive the other devices, and
-    // a probe of whole passes (three samples of every pixel) held every core long enough to
-    // delay a GPU's last chunk (docs/performance.md, "Several devices on one frame").
+    // learning it from passes over every pixel would hold every core for tenths of a second
+    // and delay a GPU's last chunk (docs/performance.md, "Several devices on one frame").
     bool probes_first()
     {
         if (m_device.is_gpu || m_job.settings.integrator != IntegratorKind::Path) return false;
