@@ -38,7 +38,7 @@ scenes=${*:-cornell dragon large}
 for scene in $scenes; do
   case $scene in
     cornell) s=$cornell; spp=2048 ;;
-    dragon) s=$dragon; spp=4096 ;;
+    dragon) s="$dragon --env 1,1,1"; spp=4096 ;;  # no light of its own: a white sky
     large) [ -f $large ] || { mkdir -p /tmp/large && build/bare/geocold-large-mesh $large | tee -a "$log"; }
            s=$large; spp=1024 ;;
   esac
