@@ -42,3 +42,9 @@ if [ ! -x "$oidn_venv/bin/python" ]; then "${sudo_cmd[@]}" python3 -m venv "$oid
 "${sudo_cmd[@]}" "$oidn_venv/bin/python" -m pip install --quiet --disable-pip-version-check 'pyoidn==2.5.1.0'
 oidn_lib="$("$oidn_venv/bin/python" -c 'import importlib.util as u; print(u.find_spec("pyoidn").submodule_search_locations[0])')/oidn"
 "${sudo_cmd[@]}" ln -sfn "$oidn_lib" /opt/geocold-cl/oidn
+
+# Open Job Description's CLI (PyPI openjd-cli, not in Debian 12) for the OpenJD template's test
+# (tests/slurm/openjd_test.sh, which the build finds here). GEOCOLD_OPENJD_VENV moves it.
+openjd_venv="${GEOCOLD_OPENJD_VENV:-/opt/geocold-cl/openjd-venv}"
+if [ ! -x "$openjd_venv/bin/python" ]; then "${sudo_cmd[@]}" python3 -m venv "$openjd_venv"; fi
+"${sudo_cmd[@]}" "$openjd_venv/bin/python" -m pip install --quiet --disable-pip-version-check 'openjd-cli==0.8.0'
