@@ -241,13 +241,16 @@ ExitCode run_render(const Options& options)
     }
     prepared = PreparedScene{};
 
-    for (const DeviceReport& d : outcome.devices)
+    for (const DeviceReport& d : outcome.devices) {
+        const std::string probe =
+            d.probe_seconds > 0.0 ? "probe " + fixed(d.probe_seconds, 3) + " s (" + fixed(d.probe_rate, 1) + " spp/s), "
+                                  : "";
         log_verbose("device " + d.name + ": " + std::to_string(d.chunks) + " chunks (" + std::to_string(d.backups) +
                     " backups), " + std::to_string(d.samples) + " spp rendered, set up in " + fixed(d.setup_seconds, 3) +
-                    " s, " + (d.probe_seconds > 0.0 ? "probe " + fixed(d.probe_seconds, 3) + " s, " : "") + "busy " +
-                    fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) + " s" +
-                    (d.failure.empty() ? "" : ", failed: " + d.failure) +
+                    " s, " + probe + "busy " + fixed(d.busy_seconds, 3) + " s, last chunk at " + fixed(d.finished_at, 3) +
+                    " s" + (d.failure.empty() ? "" : ", failed: " + d.failure) +
                     (d.left_slow ? ", left the frame: under a tenth of the other devices' rate" : ""));
+    }
     log_verbose("frame: " + fixed(outcome.seconds, 3) + " s rendering (every device set up), " +
                 fixed(outcome.seconds_with_setup, 3) + " s with the set-ups, then " + fixed(outcome.cleanup_seconds, 3) +
                 " s releasing the devices");

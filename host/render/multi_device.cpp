@@ -333,7 +333,8 @@ private:
         const double seconds_per_sample = renderer.estimate_seconds_per_sample(kProbePixels);
         m_report.probe_seconds = seconds_between(probe_start, Clock::now());
         if (!(seconds_per_sample > 0.0)) return true;
-        m_shared.pass_rate[m_me] = 1.0 / seconds_per_sample;
+        m_report.probe_rate = 1.0 / seconds_per_sample;
+        m_shared.pass_rate[m_me] = m_report.probe_rate;
         std::unique_lock lock(m_shared.mutex);
         m_shared.changed.notify_all();  // a CPU device waiting on this one's rate
         while (!m_shared.stop && m_shared.live > 1 && !(m_shared.others_rate(m_me) > 0.0) && !plan_done())

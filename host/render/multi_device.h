@@ -60,6 +60,7 @@ struct DeviceReport {
     double ready_at = 0;        // seconds from the call to the end of its set-up (on_device_ready's return)
     double busy_seconds = 0;    // rendering
     double probe_seconds = 0;   // a CPU device's probe of its rate before its first chunk
+    double probe_rate = 0;      // ... and the rate it found, in samples of every pixel per second
     double finished_at = 0;     // seconds from the frame's start to the device's last chunk
     std::string failure;        // why it dropped out; empty if it did not
     bool left_slow = false;     // left the frame as too slow to help (adds_too_little)

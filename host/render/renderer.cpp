@@ -186,10 +186,14 @@ double Renderer::estimate_seconds_per_sample(std::uint32_t probe_pixels)
     const bool listed = m_pixels_listed;
     const std::uint32_t pixels = listed ? static_cast<std::uint32_t>(selected.size()) : m_params.width * m_params.height;
     if (pixels == 0) return 0.0;
-    const std::uint32_t stride = std::max(1u, pixels / std::max(1u, probe_pixels));
+    // Runs of neighbouring pixels, spread evenly: a megakernel's camera packets take
+    // neighbours, and isolated pixels would make them incoherent and the estimate slow.
+    constexpr std::uint32_t kRun = 32;
+    const std::uint32_t runs = std::max(1u, probe_pixels / kRun);
+    const std::uint32_t stride = std::max(kRun, pixels / runs);
     std::vector<std::uint32_t> probe;
-    probe.reserve(pixels / stride + 1);
-    for (std::uint32_t i = 0; i < pixels; i += stride) probe.push_back(listed ? selected[i] : i);
+    for (std::uint32_t start = 0; start < pixels; start += stride)
+        for (std::uint32_t i = start; i < std::min(start + kRun, pixels); ++i) probe.push_back(listed ? selected[i] : i);
     const std::uint32_t next = m_next_sample;
     const PassPlanner plan = m_planner;
     select_pixels(probe);
