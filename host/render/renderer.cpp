@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -186,14 +187,22 @@ double Renderer::estimate_seconds_per_sample(std::uint32_t probe_pixels)
     const bool listed = m_pixels_listed;
     const std::uint32_t pixels = listed ? static_cast<std::uint32_t>(selected.size()) : m_params.width * m_params.height;
     if (pixels == 0) return 0.0;
-    // Runs of neighbouring pixels, spread evenly: a megakernel's camera packets take
-    // neighbours, and isolated pixels would make them incoherent and the estimate slow.
+    // Runs of neighbouring pixels (a megakernel's camera packets take neighbours; isolated
+    // pixels would make them incoherent and the estimate slow), one in each of `runs` equal
+    // stretches of the pixels, placed along its stretch by the golden-ratio sequence so that
+    // the runs do not line up in a few columns of the image.
     constexpr std::uint32_t kRun = 32;
-    const std::uint32_t runs = std::max(1u, probe_pixels / kRun);
-    const std::uint32_t stride = std::max(kRun, pixels / runs);
+    const std::uint32_t runs = std::clamp(probe_pixels / kRun, 1u, std::max(1u, pixels / kRun));
     std::vector<std::uint32_t> probe;
-    for (std::uint32_t start = 0; start < pixels; start += stride)
-        for (std::uint32_t i = start; i < std::min(start + kRun, pixels); ++i) probe.push_back(listed ? selected[i] : i);
+    for (std::uint32_t r = 0; r < runs; ++r) {
+        const std::uint64_t begin = std::uint64_t(pixels) * r / runs;
+        const std::uint64_t end = std::uint64_t(pixels) * (r + 1) / runs;
+        const std::uint64_t slack = end - begin > kRun ? end - begin - kRun : 0;
+        const double along = 0.6180339887498949 * r;
+        const std::uint64_t start = begin + static_cast<std::uint64_t>((along - std::floor(along)) * double(slack));
+        for (std::uint64_t i = start; i < std::min<std::uint64_t>(start + kRun, end); ++i)
+            probe.push_back(listed ? selected[i] : static_cast<std::uint32_t>(i));
+    }
     const std::uint32_t next = m_next_sample;
     const PassPlanner plan = m_planner;
     select_pixels(probe);
