@@ -209,16 +209,15 @@ double Renderer::estimate_seconds_per_sample(std::uint32_t probe_pixels)
     m_planner = PassPlanner(1);
     render_samples(1);
     m_planner = PassPlanner(kProbeSamples);
-    const auto start = std::chrono::steady_clock::now();
     render_samples(kProbeSamples);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double probe_seconds_per_sample = m_planner.seconds_per_sample();  // the pass just timed
     m_planner = plan;
     m_next_sample = next;
     if (listed)
         select_pixels(std::move(selected));
     else
         select_all_pixels();
-    return seconds / kProbeSamples * (static_cast<double>(pixels) / static_cast<double>(probe.size()));
+    return probe_seconds_per_sample * (static_cast<double>(pixels) / static_cast<double>(probe.size()));
 }
 
 FilmSums Renderer::sums(bool with_squares) const

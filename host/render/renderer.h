@@ -93,11 +93,11 @@ public:
     // The last pass's seconds per sample (0 before the first): for a caller with a deadline.
     double seconds_per_sample() const { return m_planner.seconds_per_sample(); }
     // Estimates the seconds a pass takes per sample of the current pixels (all, or those
-    // selected) from about `probe_pixels` of them, in runs spread evenly: one untimed sample (a driver's
-    // first launch compiles), then kProbeSamples timed. Path integrator only (UsageError
-    // otherwise). Leaves the pick of pixels, the pass plan and next_sample() as they were and
-    // the film empty. For a device that must learn its rate without taking a share of the
-    // frame's work first (multi_device.cpp).
+    // selected) from about `probe_pixels` of them, in runs spread evenly: one untimed sample
+    // (a driver's first launch compiles), then kProbeSamples timed. Path integrator only
+    // (UsageError otherwise). Leaves the pick of pixels, the pass plan and next_sample() as
+    // they were and the film empty. For a device that must learn its rate without taking a
+    // share of the frame's work first (multi_device.cpp).
     static constexpr std::uint32_t kProbeSamples = 4;
     double estimate_seconds_per_sample(std::uint32_t probe_pixels);
     // Pixels one work-item rendered in the last pass (gc_packet_lanes.h; 1 but for the BVH8

@@ -36,8 +36,8 @@ layout(std430, set = 0, binding = GC_VK_BINDING_POSITIONS) readonly buffer Posit
 /* The sRGB decoding and sheen albedo tables come from buffers the host fills from
  * gc_srgb_table.h and gc_sheen_table.h (the same numbers), not from the headers' GLSL arrays:
  * glslang gives every function that indexes a constant array at run time a private copy of it,
- * the inliner multiplies those copies (the sheen table's 512 floats became 68 copies in the
- * path shader), and lavapipe's compiler then takes minutes. The macros keep the arrays out. */
+ * inlining multiplies those copies, and lavapipe's compiler then takes minutes
+ * (docs/decisions/khr-material-layers.md). The macros keep the arrays out. */
 #define GC_SRGB_TABLE_H 1
 layout(std430, set = 0, binding = GC_VK_BINDING_SRGB) readonly buffer SrgbBuffer { float gc_srgb_to_linear_table[256]; };
 #define GC_SHEEN_TABLE_IN_BUFFER 1
