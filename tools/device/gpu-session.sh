@@ -24,7 +24,9 @@ began=$(date +%s)
 elapsed() { echo $(( $(date +%s) - began )); }
 left() { echo $(( budget - $(elapsed) )); }
 step() { echo "[$(elapsed)s] $*" | tee -a "$OUT/steps.log"; }
-dragon=.deps/shared/scenes/stanford-dragon-100k/dragon.obj
+source tools/device/frame-scenes.sh
+frame_scene dragon
+dragon=${scene_args[0]}
 
 tools/device/multi-device-run.sh build
 step "build: $(head -2 "$OUT/run.log" | tr '\n' ' ')"
@@ -59,8 +61,9 @@ fi
 for round in 1 2 3; do
     [ "${GEOCOLD_SKIP_SAMPLER_COST:-0}" != 1 ] && [ "$(left)" -gt 25 ] || break
     for sampler in independent sobol; do
-        for s in scenes/cornell-box/CornellBox-Original.obj $dragon; do
-            echo "r$round $sampler $(basename "$s"): $(timeout 30 build/bare/geocold-cl "$s" --device gpu --res 1024x1024 \
+        for name in cornell dragon; do
+            frame_scene $name
+            echo "r$round $sampler $name: $(timeout 30 build/bare/geocold-cl "${scene_args[@]}" --device gpu --res 1024x1024 \
                 --spp 1024 --sampler $sampler -v -o /tmp/sampler.pfm 2>&1 | grep -E 'samples/s|error')" >> "$OUT/sampler.log"
         done
     done

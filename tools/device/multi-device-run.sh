@@ -24,9 +24,7 @@ fi
 cli=build/bare/geocold-cl
 $cli --list-devices | tee -a "$log"
 export GEOCOLD_CACHE_DIR=/tmp/kcache
-cornell=scenes/cornell-box/CornellBox-Original.obj
-dragon=.deps/shared/scenes/stanford-dragon-100k/dragon.obj
-large=/tmp/large/large.obj
+source tools/device/frame-scenes.sh
 run() {  # label, args...
   local label=$1; shift
   $cli "$@" -v -o /tmp/o.pfm > /tmp/r.log 2>&1; rc=$?
@@ -36,21 +34,17 @@ run() {  # label, args...
 }
 scenes=${*:-cornell dragon large}
 for scene in $scenes; do
-  case $scene in
-    cornell) s=$cornell; spp=2048 ;;
-    dragon) s="$dragon --env 1,1,1"; spp=4096 ;;  # no light of its own: a white sky
-    large) [ -f $large ] || { mkdir -p /tmp/large && build/bare/geocold-large-mesh $large | tee -a "$log"; }
-           s=$large; spp=1024 ;;
-  esac
+  frame_scene $scene >> "$log" || continue
+  case $scene in cornell) spp=2048 ;; dragon) spp=4096 ;; large) spp=1024 ;; esac
   # warm-up (kernel caches)
-  $cli $s --device all --res 256x256 --spp 64 -q -o /tmp/w.pfm
+  $cli "${scene_args[@]}" --device all --res 256x256 --spp 64 -q -o /tmp/w.pfm
   for round in $(seq "${ROUNDS:-2}"); do
-    run "$scene gpu   r$round" $s --device gpu --res 1024x1024 --spp $spp
-    run "$scene cpu   r$round" $s --device cpu --threads 15 --res 1024x1024 --spp 64
-    run "$scene all   r$round" $s --device all --res 1024x1024 --spp $spp
+    run "$scene gpu   r$round" "${scene_args[@]}" --device gpu --res 1024x1024 --spp $spp
+    run "$scene cpu   r$round" "${scene_args[@]}" --device cpu --threads 15 --res 1024x1024 --spp 64
+    run "$scene all   r$round" "${scene_args[@]}" --device all --res 1024x1024 --spp $spp
     [[ $scene == large || ${MULTI_DEVICE_QUICK:-0} == 1 ]] && continue
-    run "$scene gpu1chunk r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples $spp
-    run "$scene gpu c128 r$round" $s --device gpu --res 1024x1024 --spp $spp --chunk-samples 128
-    run "$scene all c128 r$round" $s --device all --res 1024x1024 --spp $spp --chunk-samples 128
+    run "$scene gpu1chunk r$round" "${scene_args[@]}" --device gpu --res 1024x1024 --spp $spp --chunk-samples $spp
+    run "$scene gpu c128 r$round" "${scene_args[@]}" --device gpu --res 1024x1024 --spp $spp --chunk-samples 128
+    run "$scene all c128 r$round" "${scene_args[@]}" --device all --res 1024x1024 --spp $spp --chunk-samples 128
   done
 done

@@ -22,6 +22,7 @@ fi
 
 cli=build/bare/geocold-cl
 export GEOCOLD_CACHE_DIR=/tmp/kcache
+source tools/device/frame-scenes.sh
 $cli --list-devices | tee -a "$log"
 # `--list-devices` rows: index, type, name...; GPUs in index order, and PoCL's CPU device.
 gpus=($($cli --list-devices | awk '$2 == "gpu" {print $1}'))
@@ -31,13 +32,9 @@ pocl=$($cli --list-devices | awk '$2 == "cpu" && /Portable Computing Language/ {
 runs=$OUT/runs
 mkdir -p "$runs"
 for scene in ${*:-cornell dragon large}; do
-  case $scene in
-    cornell) file=scenes/cornell-box/CornellBox-Original.obj; spp=2048 ;;
-    dragon) file=".deps/shared/scenes/stanford-dragon-100k/dragon.obj --env 1,1,1"; spp=4096 ;;  # no light of its own
-    large) file=/tmp/large/large.obj; spp=4096
-           [ -f $file ] || { mkdir -p /tmp/large && build/bare/geocold-large-mesh $file >> "$log"; } ;;
-  esac
-  $cli $file --device all --res 256x256 --spp 64 -q -o /tmp/warm.pfm  # kernel caches
+  frame_scene $scene >> "$log" || continue
+  case $scene in cornell) spp=2048 ;; dragon|large) spp=4096 ;; esac
+  $cli "${scene_args[@]}" --device all --res 256x256 --spp 64 -q -o /tmp/warm.pfm  # kernel caches
   for n in 1 2 4 8; do
     [ $n -le ${#gpus[@]} ] || break
     set_gpus=$(IFS=,; echo "${gpus[*]:0:$n}")
@@ -46,7 +43,7 @@ for scene in ${*:-cornell dragon large}; do
         devices=$set_gpus
         if [ $with = gpus-pocl ]; then [ -n "$pocl" ] || continue; devices=$set_gpus,$pocl; fi
         name=$scene.$with.$n.r$round
-        $cli $file --device "$devices" --res 1024x1024 --spp $spp -v -o /tmp/frame.pfm > "$runs/$name.log" 2>&1
+        $cli "${scene_args[@]}" --device "$devices" --res 1024x1024 --spp $spp -v -o /tmp/frame.pfm > "$runs/$name.log" 2>&1
         echo "rc=$?" >> "$runs/$name.log"
         echo "hash $(sha256sum /tmp/frame.pfm | cut -c1-16)" >> "$runs/$name.log"
         echo "$name: $(grep -E 'Msamples/s|error' "$runs/$name.log")" | tee -a "$log"
