@@ -28,6 +28,13 @@ packages=(
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 
+# pip_venv DIR REQUIREMENT: a virtual environment at DIR (made once) with REQUIREMENT in it,
+# for what Debian 12 does not package.
+pip_venv() {
+    if [ ! -x "$1/bin/python" ]; then "${sudo_cmd[@]}" python3 -m venv "$1"; fi
+    "${sudo_cmd[@]}" "$1/bin/python" -m pip install --quiet --disable-pip-version-check "$2"
+}
+
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${packages[@]}"
@@ -38,13 +45,10 @@ export DEBIAN_FRONTEND=noninteractive
 # looks (host/image/denoise.h). GEOCOLD_OIDN_VENV moves the environment.
 oidn_venv="${GEOCOLD_OIDN_VENV:-/opt/geocold-cl/oidn-venv}"
 "${sudo_cmd[@]}" mkdir -p /opt/geocold-cl
-if [ ! -x "$oidn_venv/bin/python" ]; then "${sudo_cmd[@]}" python3 -m venv "$oidn_venv"; fi
-"${sudo_cmd[@]}" "$oidn_venv/bin/python" -m pip install --quiet --disable-pip-version-check 'pyoidn==2.5.1.0'
+pip_venv "$oidn_venv" 'pyoidn==2.5.1.0'
 oidn_lib="$("$oidn_venv/bin/python" -c 'import importlib.util as u; print(u.find_spec("pyoidn").submodule_search_locations[0])')/oidn"
 "${sudo_cmd[@]}" ln -sfn "$oidn_lib" /opt/geocold-cl/oidn
 
 # Open Job Description's CLI (PyPI openjd-cli, not in Debian 12) for the OpenJD template's test
-# (tests/slurm/openjd_test.sh, which the build finds here). GEOCOLD_OPENJD_VENV moves it.
-openjd_venv="${GEOCOLD_OPENJD_VENV:-/opt/geocold-cl/openjd-venv}"
-if [ ! -x "$openjd_venv/bin/python" ]; then "${sudo_cmd[@]}" python3 -m venv "$openjd_venv"; fi
-"${sudo_cmd[@]}" "$openjd_venv/bin/python" -m pip install --quiet --disable-pip-version-check 'openjd-cli==0.8.0'
+# (tests/slurm/openjd_test.sh): the build looks for it in this environment, then on PATH.
+pip_venv /opt/geocold-cl/openjd-venv 'openjd-cli==0.8.0'
