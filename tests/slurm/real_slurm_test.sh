@@ -100,6 +100,33 @@ opts=(--res 24x16 --max-depth 4)
 export GEOCOLD_CL=$cli GEOCOLD_DEVICE=cpu GEOCOLD_CACHE_DIR=$T/kcache GEOCOLD_CACHE_ALWAYS=1
 "$cli" "$scene" --quiet --device cpu --spp 14 --chunk-samples 5 "${opts[@]}" -o "$T/direct.pfm"
 
+# The renderer of the chunk named in $T/hold starts stopped on its task's first run, and its pid
+# goes to $T/held.pid: the test then acts on a task that is certainly still running, however
+# fast the machine renders (a 24x16 chunk takes a tenth of a second).
+cat > "$T/hold.sh" <<WRAP
+#!/usr/bin/env bash
+hold=\$(cat "$T/hold" 2>/dev/null || true)
+if [[ -n \$hold && \${SLURM_RESTART_COUNT:-0} == 0 && " \$* " == *" \$hold "* ]]; then
+    "$cli" "\$@" &
+    renderer=\$!
+    kill -STOP \$renderer
+    echo \$renderer > "$T/held.pid.tmp" && mv "$T/held.pid.tmp" "$T/held.pid"
+    wait \$renderer
+    exit \$?
+fi
+exec "$cli" "\$@"
+WRAP
+chmod +x "$T/hold.sh"
+# Holds the renderer of chunk $1 in the next submission; prints its pid once it is held.
+hold_chunk() { rm -f "$T/held.pid"; echo "$1" > "$T/hold"; }
+held_renderer() {
+    for i in $(seq 600); do
+        [[ -s "$T/held.pid" ]] && { cat "$T/held.pid"; return 0; }
+        sleep 0.1
+    done
+    fail "the renderer of chunk $(cat "$T/hold") did not start within 60 s"
+}
+
 # Waits until Slurm has no job left (bounded). Slurm holds a requeued job back for about two
 # minutes (reason BeginTime); the test lets it start at once.
 wait_idle() {
@@ -121,27 +148,21 @@ cmp "$T/out1/frame.pfm" "$T/direct.pfm" || fail "array + merge differs from one 
 echo "ok: array + merge == one process"
 
 # 2. kill -9 of a task's renderer: the task requeues itself; the frame has the same bits.
-# GEOCOLD_SLURM_TEST_DELAY slows task 1 so that the test can find its process.
 mkdir -p "$T/out2"
-submitted=$(GEOCOLD_SLURM_RETRIES=3 "$src/tools/slurm/slurm-render.sh" "$scene" --spp 14 --chunks 3 \
-    -o "$T/out2/frame.pfm" -- "${opts[@]}" --samples-per-pass 1)
+hold_chunk 5:10
+submitted=$(GEOCOLD_CL="$T/hold.sh" GEOCOLD_SLURM_RETRIES=3 "$src/tools/slurm/slurm-render.sh" "$scene" \
+    --spp 14 --chunks 3 -o "$T/out2/frame.pfm" -- "${opts[@]}")
 array=$(sed -n 's/.*(job \([0-9]*\)).*/\1/p' <<< "$submitted")
-killed=""
-for i in $(seq 120); do
-    victim=$(pgrep -f -- "--samples 5:10 -o $T/out2" | head -1 || true)
-    if [[ -n $victim ]]; then kill -9 "$victim"; killed=$victim; break; fi
-    sleep 0.05
-done
+victim=$(held_renderer)
+[[ ! -e "$T/out2/frame.pfm.parts/part-1.exr" ]] || fail "task 1 wrote its partial before it rendered"
+kill -9 "$victim"
 wait_idle
-if [[ -n $killed ]]; then
-    restarts=$(scontrol show job "${array}_1" | sed -n 's/.*Restarts=\([0-9]*\).*/\1/p')
-    [[ ${restarts:-0} -ge 1 ]] || fail "task ${array}_1 was not requeued (Restarts=${restarts:-?})"
-    echo "killed task 1's renderer (pid $killed); the task ran again (Restarts=$restarts)"
-else
-    echo "note: task 1 finished before the test could kill it"
-fi
+restarts=$(scontrol show job "${array}_1" | sed -n 's/.*Restarts=\([0-9]*\).*/\1/p')
+[[ ${restarts:-0} -ge 1 ]] || fail "task ${array}_1 was not requeued (Restarts=${restarts:-?})"
+echo "killed task 1's renderer (pid $victim); the task ran again (Restarts=$restarts)"
 cmp "$T/out2/frame.pfm" "$T/direct.pfm" || fail "the frame after a killed and requeued task differs"
 echo "ok: kill -9 of a task -> requeued, same bits"
+rm -f "$T/hold"
 
 # 3. A task whose device is lost (a wrapper makes task 1's geocold-cl exit 4) with no retries
 # left: not requeued; the afterany merge runs and fails with exit 7 naming the samples.
@@ -159,23 +180,22 @@ wait_idle
 grep -q "missing: 5:10" "$T"/out3/frame.pfm.parts/slurm-merge-*.log || fail "merge did not name 5:10"
 echo "ok: a failed task (no retries left) -> merge exit 7 naming 5:10"
 
-# 4. kill -9 of slurmd while a task runs, slurmd restarted: the frame has the same bits.
+# 4. kill -9 of slurmd while a task's renderer is held, slurmd restarted, the renderer let go:
+# the frame has the same bits.
 big=(--res 160x120 --max-depth 6)
 "$cli" "$scene" --quiet --device cpu --spp 24 --chunk-samples 8 "${big[@]}" -o "$T/direct4.pfm"
 mkdir -p "$T/out4"
-"$src/tools/slurm/slurm-render.sh" "$scene" --spp 24 --chunks 3 -o "$T/out4/frame.pfm" -- "${big[@]}" >/dev/null
-running=""
-for i in $(seq 200); do
-    running=$(pgrep -f -- "-o $T/out4" | head -1 || true)
-    [[ -n $running ]] && break
-    sleep 0.05
-done
+hold_chunk 8:16
+GEOCOLD_CL="$T/hold.sh" "$src/tools/slurm/slurm-render.sh" "$scene" --spp 24 --chunks 3 \
+    -o "$T/out4/frame.pfm" -- "${big[@]}" >/dev/null
+running=$(held_renderer)
 slurmd_pid=${pids[2]}
 kill -9 "$slurmd_pid"
 sleep 2
 slurmd -D -f "$SLURM_CONF" -N "$host" >> "$T/slurmd.out" 2>&1 &
 pids[2]=$!
+kill -CONT "$running"
 wait_idle
 cmp "$T/out4/frame.pfm" "$T/direct4.pfm" || fail "the frame after slurmd was killed differs"
-echo "ok: kill -9 of slurmd and a restart (task process ${running:-none found} running at the time) -> same bits"
+echo "ok: kill -9 of slurmd while task 1 ran (renderer pid $running) and a restart -> same bits"
 echo "all Slurm checks passed"
