@@ -36,9 +36,9 @@ if [ -f "/usr/$multiarch/cmake/embree-3.13.5/embree-config.cmake" ] && [ -d "/us
   cp /usr/$multiarch/libtbb.so.12.* /usr/$multiarch/libtbbmalloc.so.2.* /usr/$multiarch/libtbbmalloc_proxy.so.2.* \
      /usr/$multiarch/libtbbbind_2_5.so.3.* "$emb/$multiarch/"
 fi
-# The bench's bunny and dragon (../shared/scenes), for geocold-bench on the node: point
-# GEOCOLD_SHARED_DIR at .deps/shared there.
-for scene in stanford-bunny stanford-dragon-100k; do
+# The bench's bunny and dragon (../shared/scenes), for geocold-bench on the node (point
+# GEOCOLD_SHARED_DIR at .deps/shared there), and the helmet of tools/device/denoise-study.sh.
+for scene in stanford-bunny stanford-dragon-100k damaged-helmet; do
   src="${GEOCOLD_SHARED_DIR:-$root/../shared}/scenes/$scene"
   [ -d "$src" ] && mkdir -p "$deps/shared/scenes" && cp -r "$src" "$deps/shared/scenes/"
 done
