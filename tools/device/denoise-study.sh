@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
 # The denoising figure (docs/performance.md, "Denoising") at sizes whose references would take
 # the 2-core VM hours. On the GPU node, DamagedHelmet under a white sky at each size in SIZES
-# (default 256 512 1024): a reference of
-# REF_SPP samples (default 16384), the 16- and 256-spp images and --denoise's guides (albedo
-# and normal AOVs of 64 samples, as host/render/denoise_guides.h renders them), packed as
-# float16 into $OUT/denoise-<size>.npz. Open Image Denoise is not on the node (its library is
-# over the transfer limit), so tools/device/denoise_table.py denoises and scores them on the
-# VM, with --denoise's filter settings.
+# (default 256 512 1024): a reference of REF_SPP samples (default 16384), the 16- and 256-spp
+# images and --denoise's guides (albedo and normal AOVs of 64 samples, as
+# host/render/denoise_guides.h renders them), packed as float16 into $OUT/denoise-<size>.npz.
+# Open Image Denoise is not on the node (its library is over the transfer limit), so
+# tools/device/denoise_table.py denoises and scores them on the VM with --denoise's settings.
 #   Here:     tools/device/prepare-deps.sh     (packs the helmet into .deps)
 #   The node: tools/device/denoise-study.sh    (carry .deps; about 60 s on an H100)
 #   Here:     /opt/geocold-cl/oidn-venv/bin/python tools/device/denoise_table.py FILES_AT/denoise-*.npz
