@@ -102,7 +102,7 @@ export GEOCOLD_CL=$cli GEOCOLD_DEVICE=cpu GEOCOLD_CACHE_DIR=$T/kcache GEOCOLD_CA
 
 # The renderer of the chunk named in $T/hold starts stopped on its task's first run, and its pid
 # goes to $T/held.pid: the test then acts on a task that is certainly still running, however
-# fast the machine renders (a 24x16 chunk takes a tenth of a second).
+# fast the machine renders the chunk.
 cat > "$T/hold.sh" <<WRAP
 #!/usr/bin/env bash
 hold=\$(cat "$T/hold" 2>/dev/null || true)
