@@ -12,8 +12,9 @@ cd "$root"
 build=${BUILD_DIR:-build/bare}
 [ -d .deps/include ] || { echo "missing .deps/: run tools/device/prepare-deps.sh on a Debian machine and carry it" >&2; exit 2; }
 
-opencl_lib=$(ldconfig -p | awk '/libOpenCL\.so(\.1)? /{print $NF; exit}')
-[ -n "$opencl_lib" ] || { echo "no libOpenCL (ICD loader) found" >&2; exit 4; }
+# shellcheck source=tools/device/configure-bare.sh
+source "$root/tools/device/configure-bare.sh"
+node_opencl_loader > /dev/null || exit 4
 
 # GoogleTest from the carried sources, built and installed once into the build directory so
 # that find_package(GTest) finds it. (The top level's GEOCOLD_GTEST_SOURCE_DIR fallback adds
@@ -35,8 +36,7 @@ fi
 source "$root/tools/device/embree-env.sh"
 [ ${#embree_args[@]} -eq 0 ] || echo "Embree yardstick: LD_LIBRARY_PATH=$emb"
 
-cmake --preset bare -B "$build" -DOpenCL_INCLUDE_DIR="$root/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
-      -DCMAKE_PREFIX_PATH="$gtest_prefix" -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest" \
+configure_bare "$build" -DCMAKE_PREFIX_PATH="$gtest_prefix" -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest" \
       "${embree_args[@]}" ${GEOCOLD_CMAKE_ARGS:-}
 cmake --build "$build" -j "$(nproc)"
 "$build_abs/geocold-cl" --list-devices

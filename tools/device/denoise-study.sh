@@ -15,9 +15,9 @@ scene=.deps/shared/scenes/damaged-helmet/DamagedHelmet.glb
 [ -f "$scene" ] || { echo "missing $scene: run tools/device/prepare-deps.sh here and carry .deps" >&2; exit 2; }
 out=${OUT:?OUT must name the folder the results go to}
 nvidia-smi --query-gpu=name --format=csv,noheader | tee "$out/gpu.txt"
-opencl_lib=$(ldconfig -p | awk '/libOpenCL\.so(\.1)? /{print $NF; exit}')
-cmake --preset bare -B build/bare -DOpenCL_INCLUDE_DIR="$PWD/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
-      -DGEOCOLD_BUILD_TESTS=OFF > "$out/build.log" 2>&1
+# shellcheck source=tools/device/configure-bare.sh
+source tools/device/configure-bare.sh
+configure_bare build/bare -DGEOCOLD_BUILD_TESTS=OFF > "$out/build.log" 2>&1
 cmake --build build/bare --target geocold-cl -j "$(nproc)" >> "$out/build.log" 2>&1
 cli=build/bare/geocold-cl
 export GEOCOLD_CACHE_DIR=/tmp/kcache

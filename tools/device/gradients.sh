@@ -43,8 +43,9 @@ variant=cuda_ad_rgb
 [ "$gpu" = gpu ] || variant=llvm_ad_rgb
 no_build=${GEOCOLD_GRAD_NO_BUILD:-0}
 [ "$no_build" = 1 ] || [ -d .deps/include ] || { echo "missing .deps/: run tools/device/prepare-deps.sh on a Debian machine and carry it" >&2; exit 2; }
-opencl_lib=$(ldconfig -p | awk '/libOpenCL\.so(\.1)? /{print $NF; exit}')
-[ -n "$opencl_lib" ] || { echo "no libOpenCL (ICD loader) found" >&2; exit 4; }
+# shellcheck source=tools/device/configure-bare.sh
+source "$root/tools/device/configure-bare.sh"
+node_opencl_loader > /dev/null || exit 4
 status=0
 step() { # name, command...: runs it with its output appended to the log, keeps the first failure
     local name=$1
@@ -72,8 +73,7 @@ elif [ ! -f "$gtest_prefix/lib/cmake/GTest/GTestConfig.cmake" ]; then
         cmake --build "$build_abs/_gtest/build" -j "$(nproc)" >/dev/null &&
         cmake --install "$build_abs/_gtest/build" >/dev/null
 fi
-if [ "$no_build" != 1 ] && ! { cmake --preset bare -B "$build" -DOpenCL_INCLUDE_DIR="$root/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
-           -DCMAKE_PREFIX_PATH="$gtest_prefix" -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest" -DGEOCOLD_BUILD_BENCH=ON &&
+if [ "$no_build" != 1 ] && ! { configure_bare "$build" -DCMAKE_PREFIX_PATH="$gtest_prefix" -DGEOCOLD_GTEST_SOURCE_DIR="$root/.deps/googletest" -DGEOCOLD_BUILD_BENCH=ON &&
        cmake --build "$build" -j "$(nproc)" --target geocold-grad-bench gradient_test; } > "$out/gradients-build.log" 2>&1; then
     tail -30 "$out/gradients-build.log"
     exit 8

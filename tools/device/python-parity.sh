@@ -10,14 +10,14 @@ out=${OUT:-build/py}
 mkdir -p "$out"
 [ ! -d .whl ] || python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /tmp/site .whl/*.whl || exit 9
 export PYTHONPATH=/tmp/site
-opencl_lib=$(ldconfig -p | awk '/libOpenCL\.so(\.1)? /{print $NF; exit}')
+# shellcheck source=tools/device/configure-bare.sh
+source tools/device/configure-bare.sh
 # PY_BUILD_DIR=build/bare reuses the CLI's build (configured with GEOCOLD_PYTHON=ON, as
 # tools/device/multi-device-run.sh does); the default is a build of the module alone.
 pybuild=${PY_BUILD_DIR:-build/py}
 no_tests=-DGEOCOLD_BUILD_TESTS=OFF
 [ "$pybuild" != build/bare ] || no_tests=
-{ cmake --preset bare -B "$pybuild" -DOpenCL_INCLUDE_DIR="$PWD/.deps/include" -DOpenCL_LIBRARY="$opencl_lib" \
-    -DGEOCOLD_PYTHON=ON $no_tests -DPython_EXECUTABLE="$(command -v python3)" \
+{ configure_bare "$pybuild" -DGEOCOLD_PYTHON=ON $no_tests -DPython_EXECUTABLE="$(command -v python3)" \
     -Dnanobind_DIR="$(python3 -m nanobind --cmake_dir)" &&
   cmake --build "$pybuild" -j "$(nproc)" --target _geocold geocold-cl &&
   cmake --install "$pybuild" --component python --prefix /tmp/pyinst; } > "$out/py-build.log" 2>&1 ||
